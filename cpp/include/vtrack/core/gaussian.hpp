@@ -1,0 +1,36 @@
+#pragma once
+// Multivariate normal distribution N(mean, covariance): sampling through the Cholesky factor and
+// log-density. The covariance must be symmetric positive definite; anything else is an
+// InvalidArgument that says so.
+#include <Eigen/Core>
+
+#include "vtrack/core/random.hpp"
+
+namespace vtrack::core {
+
+class Gaussian {
+ public:
+  Gaussian(Eigen::VectorXd mean, const Eigen::MatrixXd& covariance);
+
+  int dim() const { return static_cast<int>(mean_.size()); }
+  const Eigen::VectorXd& mean() const { return mean_; }
+  Eigen::MatrixXd covariance() const { return chol_ * chol_.transpose(); }
+  // Lower-triangular L with L L^T = covariance.
+  const Eigen::MatrixXd& cholesky() const { return chol_; }
+
+  Eigen::VectorXd sample(Rng& rng) const;
+  // n samples as the columns of a dim x n matrix.
+  Eigen::MatrixXd sample(Rng& rng, Eigen::Index n) const;
+
+  // log N(x; mean, covariance) = -d/2 log(2 pi) - 1/2 log|C| - 1/2 (x-m)^T C^{-1} (x-m).
+  double log_density(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+  // Log-density of each column of a dim x n matrix.
+  Eigen::VectorXd log_density_columns(const Eigen::Ref<const Eigen::MatrixXd>& xs) const;
+
+ private:
+  Eigen::VectorXd mean_;
+  Eigen::MatrixXd chol_;
+  double log_normaliser_;  // -d/2 log(2 pi) - sum log L_ii
+};
+
+}  // namespace vtrack::core

@@ -1,0 +1,150 @@
+#include "vtrack/core/resampling.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "vtrack/core/errors.hpp"
+
+namespace vtrack::core {
+namespace {
+
+// Validates the weights and returns their sum.
+double checked_total(const Eigen::Ref<const Eigen::VectorXd>& weights) {
+  if (weights.size() == 0) throw InvalidArgument("weights is empty");
+  double total = 0.0;
+  for (Eigen::Index i = 0; i < weights.size(); ++i) {
+    const double w = weights[i];
+    if (!(w >= 0.0) || !std::isfinite(w)) {
+      throw InvalidArgument("weights must be finite and non-negative; weights[" +
+                            std::to_string(i) + "] = " + std::to_string(w));
+    }
+    total += w;
+  }
+  if (!(total > 0.0)) throw InvalidArgument("weights are all zero");
+  if (!std::isfinite(total)) throw InvalidArgument("weights sum to infinity");
+  return total;
+}
+
+// The one inverse-CDF pass all schemes share: given `count` points in non-decreasing order on
+// [0, total), writes for each the index i with cumsum_{i-1} <= point < cumsum_i. Points at or past
+// the rounded-off end of the cumulative sum go to the last particle of positive weight, so a
+// zero-weight particle is never chosen. O(N + M).
+template <typename NextPoint>
+void invert_cdf(const Eigen::Ref<const Eigen::VectorXd>& weights, std::size_t count,
+                NextPoint&& next_point, std::int64_t* ancestors) {
+  const Eigen::Index n = weights.size();
+  Eigen::Index last_positive = n - 1;
+  while (weights[last_positive] == 0.0) --last_positive;
+  Eigen::Index i = 0;
+  double cumulative = weights[0];
+  for (std::size_t j = 0; j < count; ++j) {
+    const double point = next_point(j);
+    while (point >= cumulative && i < last_positive) cumulative += weights[++i];
+    // point < cumulative with cumulative unchanged since the last positive weight => weights[i] > 0.
+    ancestors[j] = i;
+  }
+}
+
+// Multinomial in O(N + M): M sorted uniforms from normalised cumulative sums of M + 1 standard
+// exponentials (the uniform order statistics are spacings of a Poisson process), then one pass.
+void multinomial(const Eigen::Ref<const Eigen::VectorXd>& weights, double total,
+                 std::size_t count, Rng& rng, std::int64_t* ancestors) {
+  std::vector<double> points(count);
+  double sum = 0.0;
+  for (std::size_t j = 0; j < count; ++j) {
+    sum += -std::log(1.0 - rng.uniform());
+    points[j] = sum;
+  }
+  sum += -std::log(1.0 - rng.uniform());
+  const double scale = total / sum;
+  invert_cdf(weights, count, [&](std::size_t j) { return points[j] * scale; }, ancestors);
+}
+
+}  // namespace
+
+ResamplingScheme parse_resampling_scheme(const std::string& name) {
+  if (name == "multinomial") return ResamplingScheme::Multinomial;
+  if (name == "stratified") return ResamplingScheme::Stratified;
+  if (name == "systematic") return ResamplingScheme::Systematic;
+  if (name == "residual") return ResamplingScheme::Residual;
+  throw InvalidArgument("unknown resampling scheme '" + name +
+                        "' (expected multinomial, stratified, systematic or residual)");
+}
+
+const char* to_string(ResamplingScheme scheme) {
+  switch (scheme) {
+    case ResamplingScheme::Multinomial: return "multinomial";
+    case ResamplingScheme::Stratified: return "stratified";
+    case ResamplingScheme::Systematic: return "systematic";
+    case ResamplingScheme::Residual: return "residual";
+  }
+  return "unknown";
+}
+
+void resample(ResamplingScheme scheme, const Eigen::Ref<const Eigen::VectorXd>& weights,
+              std::size_t count, Rng& rng, std::int64_t* ancestors) {
+  const double total = checked_total(weights);
+  if (count == 0) return;
+  const double step = total / static_cast<double>(count);
+  switch (scheme) {
+    case ResamplingScheme::Multinomial:
+      multinomial(weights, total, count, rng, ancestors);
+      return;
+    case ResamplingScheme::Stratified:
+      // One uniform in each of the M strata [j/M, (j+1)/M).
+      invert_cdf(weights, count,
+                 [&](std::size_t j) { return (static_cast<double>(j) + rng.uniform()) * step; },
+                 ancestors);
+      return;
+    case ResamplingScheme::Systematic: {
+      // One uniform shared by all strata.
+      const double offset = rng.uniform();
+      invert_cdf(weights, count,
+                 [&](std::size_t j) { return (static_cast<double>(j) + offset) * step; },
+                 ancestors);
+      return;
+    }
+    case ResamplingScheme::Residual: {
+      // floor(M w_i) deterministic copies, then the remaining R draws multinomially from the
+      // residuals M w_i - floor(M w_i) (Liu & Chen 1998).
+      const Eigen::Index n = weights.size();
+      Eigen::VectorXd residual(n);
+      std::size_t filled = 0;
+      for (Eigen::Index i = 0; i < n; ++i) {
+        const double expected = weights[i] / step;
+        const double copies = std::floor(expected);
+        residual[i] = expected - copies;
+        for (std::size_t c = 0; c < static_cast<std::size_t>(copies) && filled < count; ++c) {
+          ancestors[filled++] = i;
+        }
+      }
+      const std::size_t remaining = count - filled;
+      if (remaining == 0) return;
+      const double residual_total = residual.sum();
+      if (residual_total > 0.0) {
+        std::vector<std::int64_t> extra(remaining);
+        multinomial(residual, residual_total, remaining, rng, extra.data());
+        // Merge the two sorted runs so the output stays sorted.
+        std::vector<std::int64_t> merged(count);
+        std::merge(ancestors, ancestors + filled, extra.begin(), extra.end(), merged.begin());
+        std::copy(merged.begin(), merged.end(), ancestors);
+      } else {
+        // Rounding left no residual mass: top up from the plain weights (rare; keeps count exact).
+        multinomial(weights, total, remaining, rng, ancestors + filled);
+        std::sort(ancestors, ancestors + count);
+      }
+      return;
+    }
+  }
+}
+
+std::vector<std::int64_t> resample(ResamplingScheme scheme,
+                                   const Eigen::Ref<const Eigen::VectorXd>& weights,
+                                   std::size_t count, Rng& rng) {
+  std::vector<std::int64_t> ancestors(count);
+  resample(scheme, weights, count, rng, ancestors.data());
+  return ancestors;
+}
+
+}  // namespace vtrack::core

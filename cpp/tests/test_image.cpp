@@ -1,0 +1,96 @@
+#include <gtest/gtest.h>
+
+#include <opencv2/core.hpp>
+
+#include "vtrack/core/errors.hpp"
+#include "vtrack/core/random.hpp"
+#include "vtrack/image/color.hpp"
+#include "vtrack/image/integral_image.hpp"
+
+using namespace vtrack::image;
+
+namespace {
+
+double brute_force_sum(const cv::Mat& image, const Rect& r) {
+  double total = 0;
+  for (int y = std::max(r.y, 0); y < std::min(r.y + r.height, image.rows); ++y) {
+    for (int x = std::max(r.x, 0); x < std::min(r.x + r.width, image.cols); ++x) {
+      total += image.at<float>(y, x);
+    }
+  }
+  return total;
+}
+
+}  // namespace
+
+TEST(IntegralImage, RectangleSumsMatchBruteForce) {
+  vtrack::core::Rng rng(31);
+  for (int trial = 0; trial < 20; ++trial) {
+    const int rows = 1 + static_cast<int>(rng.below(60));
+    const int cols = 1 + static_cast<int>(rng.below(80));
+    cv::Mat image(rows, cols, CV_32F);
+    for (int y = 0; y < rows; ++y)
+      for (int x = 0; x < cols; ++x) image.at<float>(y, x) = static_cast<float>(rng.uniform());
+    IntegralImage ii(image);
+    ASSERT_EQ(ii.rows(), rows);
+    ASSERT_EQ(ii.cols(), cols);
+    for (int k = 0; k < 200; ++k) {
+      // Corners from well outside the image on every side, sizes including 0 and negative.
+      const Rect r{static_cast<int>(rng.below(cols + 40)) - 20,
+                   static_cast<int>(rng.below(rows + 40)) - 20,
+                   static_cast<int>(rng.below(cols + 10)) - 5,
+                   static_cast<int>(rng.below(rows + 10)) - 5};
+      EXPECT_NEAR(ii.sum(r), brute_force_sum(image, r), 1e-9)
+          << "rect " << r.x << "," << r.y << "," << r.width << "," << r.height;
+      const Rect c = ii.clip(r);
+      EXPECT_EQ(ii.area(r), static_cast<long long>(c.width) * c.height);
+    }
+  }
+}
+
+TEST(IntegralImage, EdgeCases) {
+  cv::Mat ones(10, 20, CV_32F, cv::Scalar(1.0f));
+  IntegralImage ii(ones);
+  EXPECT_EQ(ii.sum({0, 0, 20, 10}), 200.0);
+  EXPECT_EQ(ii.sum({-100, -100, 1000, 1000}), 200.0);  // covers the image
+  EXPECT_EQ(ii.sum({20, 0, 5, 5}), 0.0);               // just right of the image
+  EXPECT_EQ(ii.area({20, 0, 5, 5}), 0);
+  EXPECT_EQ(ii.sum({5, 5, 0, 3}), 0.0);                // empty
+  EXPECT_EQ(ii.sum({5, 5, -3, 3}), 0.0);               // negative width
+  EXPECT_EQ(ii.sum({18, 8, 5, 5}), 4.0);               // partly outside
+  EXPECT_EQ(ii.sum({2147483600, 0, 2147483000, 5}), 0.0);  // no integer overflow
+  cv::Mat bytes(4, 4, CV_8U, cv::Scalar(255));
+  EXPECT_EQ(IntegralImage(bytes).sum({0, 0, 4, 4}), 16 * 255.0);
+}
+
+TEST(IntegralImage, RejectsBadImages) {
+  EXPECT_THROW(IntegralImage(cv::Mat()), vtrack::InvalidArgument);
+  EXPECT_THROW(IntegralImage(cv::Mat(3, 3, CV_32FC3)), vtrack::InvalidArgument);
+  EXPECT_THROW(IntegralImage(cv::Mat(3, 3, CV_16S)), vtrack::InvalidArgument);
+  EXPECT_THROW(IntegralImage().sum({0, 0, 1, 1}), vtrack::InvalidArgument);
+}
+
+TEST(Rgi, MatchesEquationsSixToEight) {
+  cv::Mat bgr(2, 3, CV_8UC3);
+  const cv::Vec3b pixels[] = {{10, 20, 30}, {0, 0, 0}, {255, 255, 255},
+                              {0, 0, 1},    {7, 0, 0}, {100, 200, 50}};
+  for (int i = 0; i < 6; ++i) bgr.at<cv::Vec3b>(i / 3, i % 3) = pixels[i];
+  cv::Mat rgi;
+  bgr_to_rgi(bgr, rgi);
+  ASSERT_EQ(rgi.type(), CV_32FC3);
+  for (int i = 0; i < 6; ++i) {
+    const double b = pixels[i][0], g = pixels[i][1], r = pixels[i][2];
+    const double s = r + g + b;
+    const cv::Vec3f out = rgi.at<cv::Vec3f>(i / 3, i % 3);
+    EXPECT_NEAR(out[0], s > 0 ? r / s : 1.0 / 3.0, 1e-6);
+    EXPECT_NEAR(out[1], s > 0 ? g / s : 1.0 / 3.0, 1e-6);
+    EXPECT_NEAR(out[2], s / 765.0, 1e-6);
+  }
+}
+
+TEST(Rgi, RejectsBadFrames) {
+  cv::Mat out;
+  EXPECT_THROW(bgr_to_rgi(cv::Mat(), out), vtrack::InvalidArgument);
+  EXPECT_THROW(bgr_to_rgi(cv::Mat(4, 4, CV_8UC1), out), vtrack::InvalidArgument);
+  EXPECT_THROW(bgr_to_rgi(cv::Mat(4, 4, CV_32FC3), out), vtrack::InvalidArgument);
+}
