@@ -7,8 +7,6 @@
 #include <string>
 #include <vector>
 
-#include <opencv2/core/utils/logger.hpp>
-
 #include "vtrack/apps/video_source.hpp"
 #include "vtrack/core/errors.hpp"
 #include "vtrack/version.hpp"
@@ -74,8 +72,7 @@ void print_help() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  // OpenCV's own warnings (e.g. from a failed open) would duplicate our error message.
-  cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
+  vtrack::apps::quiet_video_backend_logs();  // our error messages say what went wrong
   std::vector<std::string> args(argv + 1, argv + argc);
   try {
     if (args.empty()) throw UsageError("no command given (try 'vtrack --help')");

@@ -4,6 +4,9 @@
 #include <cctype>
 #include <filesystem>
 
+#include <cstdlib>
+
+#include <opencv2/core/utils/logger.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include "vtrack/core/errors.hpp"
@@ -91,6 +94,11 @@ bool VideoSource::read(cv::Mat& frame) {
   }
   ++frames_read_;
   return true;
+}
+
+void quiet_video_backend_logs() {
+  setenv("OPENCV_FFMPEG_LOGLEVEL", "-8", /*overwrite=*/0);  // AV_LOG_QUIET
+  cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
 }
 
 VideoInfo probe_video(const std::string& path) {

@@ -52,6 +52,11 @@ struct VideoInfo {
   bool is_image_folder = false;
 };
 
+// Silences what FFmpeg and OpenCV print to stderr on a damaged or unsupported file, because our
+// exceptions already say it; called by the CLI and the Python module at start-up. Respects an
+// OPENCV_FFMPEG_LOGLEVEL the user has set.
+void quiet_video_backend_logs();
+
 // Opens `path` and decodes it to the end; IoError on any of VideoSource's errors.
 VideoInfo probe_video(const std::string& path);
 
