@@ -19,7 +19,7 @@ SOURCES := CMakeLists.txt pyproject.toml $(shell find cpp bindings python -type 
 
 .PHONY: test demo bench build clean
 
-test: $(VENV)/.vtrack-installed
+test: $(VENV)/.vtrack-installed $(VIDEO)
 	$(VENV)/bin/ctest --test-dir $(BUILD)/wheel --output-on-failure -j2
 	$(PY) -m pytest -q
 
