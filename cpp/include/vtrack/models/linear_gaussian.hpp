@@ -1,0 +1,62 @@
+#pragma once
+// Linear-Gaussian motion and observation models and the Kalman recursion for Gaussian track
+// densities (used by the GLMB filter's Gaussian tracks and by any Kalman-based tracker).
+#include <Eigen/Core>
+#include <Eigen/Cholesky>
+
+namespace vtrack::models {
+
+// x_k = F x_{k-1} + v,  v ~ N(0, Q).
+struct LinearGaussianMotion {
+  Eigen::MatrixXd F;
+  Eigen::MatrixXd Q;
+
+  // Constant velocity in `axes` dimensions, rgbd-glmb-switching-observation.txt eq. (7): state
+  // [p_1, v_1, p_2, v_2, ...], F = I ⊗ [[1, T], [0, 1]], Q = sigma_v^2 (I ⊗ g g^T) with
+  // g = [T^2/2, T]^T (a white-noise acceleration of standard deviation sigma_v per axis).
+  // axes = 3 is the paper's 3-D model; axes = 2 is the standard GLMB benchmark's.
+  static LinearGaussianMotion constant_velocity(int axes, double period, double sigma_v);
+};
+
+// z = H x + w,  w ~ N(0, R).
+struct LinearGaussianObservation {
+  Eigen::MatrixXd H;
+  Eigen::MatrixXd R;
+
+  // Positions of a constant-velocity state (eq. 2's H = [1 0 1 0 1 0] pattern, one row per axis)
+  // with noise covariance R (axes x axes).
+  static LinearGaussianObservation position_of_constant_velocity(int axes,
+                                                                 const Eigen::MatrixXd& R);
+};
+
+struct GaussianDensity {
+  Eigen::VectorXd mean;
+  Eigen::MatrixXd cov;
+};
+
+// Chapman-Kolmogorov step: N(F m, F P F^T + Q).
+GaussianDensity kalman_predict(const GaussianDensity& prior, const LinearGaussianMotion& motion);
+
+// The measurement-independent half of a Kalman update, computed once per track and reused for
+// every measurement (a GLMB update scores each track against every detection).
+class KalmanInnovation {
+ public:
+  KalmanInnovation(const GaussianDensity& predicted, const LinearGaussianObservation& observation);
+
+  // log N(z; H m, S) with S = H P H^T + R: the track's measurement likelihood (eq. 2).
+  double log_likelihood(const Eigen::Ref<const Eigen::VectorXd>& z) const;
+  // Squared Mahalanobis distance (z - H m)^T S^{-1} (z - H m), for gating.
+  double mahalanobis_squared(const Eigen::Ref<const Eigen::VectorXd>& z) const;
+  // Posterior N(m + K (z - H m), (I - K H) P) in Joseph form.
+  GaussianDensity posterior(const Eigen::Ref<const Eigen::VectorXd>& z) const;
+
+ private:
+  Eigen::VectorXd predicted_mean_;
+  Eigen::VectorXd predicted_z_;
+  Eigen::LLT<Eigen::MatrixXd> innovation_llt_;
+  double log_normaliser_;
+  Eigen::MatrixXd gain_;
+  Eigen::MatrixXd posterior_cov_;
+};
+
+}  // namespace vtrack::models

@@ -1,0 +1,86 @@
+#include "vtrack/models/linear_gaussian.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "vtrack/core/errors.hpp"
+
+namespace vtrack::models {
+namespace {
+
+constexpr double kLog2Pi = 1.8378770664093454835606594728112;
+
+void require_positive(double value, const char* name) {
+  if (!(value > 0.0) || !std::isfinite(value)) {
+    throw InvalidArgument(std::string(name) + " must be positive and finite, got " +
+                          std::to_string(value));
+  }
+}
+
+}  // namespace
+
+LinearGaussianMotion LinearGaussianMotion::constant_velocity(int axes, double period,
+                                                             double sigma_v) {
+  if (axes < 1) throw InvalidArgument("axes must be >= 1, got " + std::to_string(axes));
+  require_positive(period, "period");
+  require_positive(sigma_v, "sigma_v");
+  const int n = 2 * axes;
+  LinearGaussianMotion m{Eigen::MatrixXd::Identity(n, n), Eigen::MatrixXd::Zero(n, n)};
+  const Eigen::Vector2d g(period * period / 2.0, period);
+  const Eigen::Matrix2d block = sigma_v * sigma_v * g * g.transpose();
+  for (int a = 0; a < axes; ++a) {
+    m.F(2 * a, 2 * a + 1) = period;
+    m.Q.block<2, 2>(2 * a, 2 * a) = block;
+  }
+  return m;
+}
+
+LinearGaussianObservation LinearGaussianObservation::position_of_constant_velocity(
+    int axes, const Eigen::MatrixXd& R) {
+  if (axes < 1) throw InvalidArgument("axes must be >= 1, got " + std::to_string(axes));
+  if (R.rows() != axes || R.cols() != axes) {
+    throw InvalidArgument("R must be " + std::to_string(axes) + "x" + std::to_string(axes));
+  }
+  LinearGaussianObservation o{Eigen::MatrixXd::Zero(axes, 2 * axes), R};
+  for (int a = 0; a < axes; ++a) o.H(a, 2 * a) = 1.0;
+  return o;
+}
+
+GaussianDensity kalman_predict(const GaussianDensity& prior, const LinearGaussianMotion& motion) {
+  return {motion.F * prior.mean, motion.F * prior.cov * motion.F.transpose() + motion.Q};
+}
+
+KalmanInnovation::KalmanInnovation(const GaussianDensity& predicted,
+                                   const LinearGaussianObservation& observation)
+    : predicted_mean_(predicted.mean), predicted_z_(observation.H * predicted.mean) {
+  const Eigen::MatrixXd PHt = predicted.cov * observation.H.transpose();
+  Eigen::MatrixXd S = observation.H * PHt + observation.R;
+  S = 0.5 * (S + S.transpose());
+  innovation_llt_.compute(S);
+  if (innovation_llt_.info() != Eigen::Success) {
+    throw InvalidArgument("innovation covariance H P H^T + R is not positive definite");
+  }
+  const Eigen::MatrixXd L = innovation_llt_.matrixL();
+  log_normaliser_ = -0.5 * static_cast<double>(S.rows()) * kLog2Pi -
+                    L.diagonal().array().log().sum();
+  gain_ = innovation_llt_.solve(PHt.transpose()).transpose();  // K = P H^T S^{-1}
+  const Eigen::Index n = predicted.mean.size();
+  const Eigen::MatrixXd IKH = Eigen::MatrixXd::Identity(n, n) - gain_ * observation.H;
+  // Joseph form: stays symmetric positive semi-definite under round-off.
+  posterior_cov_ = IKH * predicted.cov * IKH.transpose() + gain_ * observation.R * gain_.transpose();
+}
+
+double KalmanInnovation::mahalanobis_squared(const Eigen::Ref<const Eigen::VectorXd>& z) const {
+  const Eigen::VectorXd white = innovation_llt_.matrixL().solve(z - predicted_z_);
+  return white.squaredNorm();
+}
+
+double KalmanInnovation::log_likelihood(const Eigen::Ref<const Eigen::VectorXd>& z) const {
+  return log_normaliser_ - 0.5 * mahalanobis_squared(z);
+}
+
+GaussianDensity KalmanInnovation::posterior(const Eigen::Ref<const Eigen::VectorXd>& z) const {
+  return {predicted_mean_ + gain_ * (z - predicted_z_), posterior_cov_};
+}
+
+}  // namespace vtrack::models
