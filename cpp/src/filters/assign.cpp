@@ -228,20 +228,28 @@ class Murty {
     if (s_.solve() < 0) {
       std::vector<int> all(n);
       for (int i = 0; i < n; ++i) all[i] = i;
-      push_solved(store(all.data(), n, nullptr, 0));
+      const int root = store(all.data(), n, nullptr, 0);
+      queue_.push({nodes_[root].cost, root, -1, true});
     }
     while (static_cast<std::int64_t>(out_costs.size()) < k && !queue_.empty()) {
       const Entry e = queue_.top();
       queue_.pop();
+      int id = e.node;
       if (e.child >= 0) {
-        if (solve_child(e.node, e.child)) push_solved(static_cast<int>(nodes_.size()) - 1);
-        continue;
+        if (!e.solved) {  // a lower bound reached the front: solve, requeue with the exact cost
+          const double c = solve_child(e.node, e.child, false);
+          if (c < kInf) queue_.push({c, e.node, e.child, true});
+          continue;
+        }
+        // Its exact cost reached the front: it is next. Solving again to keep its state costs
+        // one augmentation per output, far less than storing every solved child.
+        solve_child(e.node, e.child, true);
+        id = static_cast<int>(nodes_.size()) - 1;
       }
-      const Node& node = nodes_[e.node];
-      out_costs.push_back(node.cost);
-      out.insert(out.end(), col4row_.begin() + static_cast<std::ptrdiff_t>(e.node) * n,
-                 col4row_.begin() + static_cast<std::ptrdiff_t>(e.node + 1) * n);
-      if (static_cast<std::int64_t>(out_costs.size()) < k) partition(e.node);
+      out_costs.push_back(nodes_[id].cost);
+      out.insert(out.end(), col4row_.begin() + static_cast<std::ptrdiff_t>(id) * n,
+                 col4row_.begin() + static_cast<std::ptrdiff_t>(id + 1) * n);
+      if (static_cast<std::int64_t>(out_costs.size()) < k) partition(id);
     }
     RankedAssignments result;
     const auto count = static_cast<Eigen::Index>(out_costs.size());
@@ -257,18 +265,18 @@ class Murty {
     int free_begin, n_free;      // into free_
     int forbid_begin, n_forbid;  // into forbidden_
   };
-  // A queue entry: the solved node `node` (child < 0), or child number `child` of solved node
-  // `node` not yet solved, keyed by its lower bound. Solved first among equal keys.
+  // A queue entry: the stored node `node` (child < 0), or child number `child` of stored node
+  // `node`, keyed by its exact cost (solved) or by a lower bound. Among equal keys exact costs
+  // come first.
   struct Entry {
     double key;
     int node, child;
+    bool solved;
     bool operator<(const Entry& o) const {  // std::priority_queue pops the largest
       if (key != o.key) return key > o.key;
-      return child >= 0 && o.child < 0;
+      return !solved && o.solved;
     }
   };
-
-  void push_solved(int id) { queue_.push({nodes_[id].cost, id, -1}); }
 
   // Appends the solver's current assignment and duals as a new node.
   int store(const int* free_rows, int n_free, const std::pair<int, int>* forbid, int n_forbid) {
@@ -307,48 +315,64 @@ class Murty {
     }
   }
 
-  // Orders node `id`'s free rows by decreasing lower bound of the child that forbids each row's
-  // column, and queues the children. The bound (Miller, Stone & Cox, section III.B): with feasible
-  // duals, any assignment costs at least the parent's cost plus the reduced costs of its pairs;
-  // a child must give row i another column (>= the smallest other reduced cost in row i), and
-  // its column a(i) either goes to another free row or, when n < m, stays unassigned, which gives
-  // up the dual v_a <= 0 (>= -v_a). Computed over all of the parent's free rows, which only
-  // weakens it, so one pass serves both the ordering and the keys.
+  // A lower bound on (child cost - parent cost) for the child that forbids row i its column
+  // a = a(i) (Miller, Stone & Cox, section III.B). With feasible duals, any assignment costs at
+  // least the parent's cost plus the reduced costs of its pairs. The child must give row i another
+  // available column (>= the smallest such reduced cost in row i), and column a must either go
+  // to one of `rows` (the child's other free rows) or, when n < m, stay unassigned, which gives up
+  // its dual v_a <= 0 (>= -v_a). These are two different pairs, so the two minima add up.
+  // avail_v_[j] is v_j for an available column and -inf otherwise, so that the row minimum is one
+  // branch-free (vectorisable) pass: min_j (c_ij - avail_v_j) - u_i.
+  double bound(int i, const int* rows, int count) {
+    const int a = s_.col4row[i];
+    const double saved = avail_v_[a];
+    avail_v_[a] = -kInf;
+    const double* ci = &s_.at(i, 0);
+    double row_min = kInf;
+    for (int j = 0; j < s_.m; ++j) {
+      const double r = ci[j] - avail_v_[j];
+      row_min = r < row_min ? r : row_min;
+    }
+    row_min -= s_.u[i];
+    avail_v_[a] = saved;
+    double col_min = s_.n < s_.m ? -s_.v[a] : kInf;
+    for (int q = 0; q < count; ++q) {
+      if (rows[q] != i) col_min = std::min(col_min, s_.reduced(rows[q], a));
+    }
+    return std::max(0.0, row_min + col_min);  // >= 0 up to rounding; inf: infeasible child
+  }
+
+  // Partitions node `id` and queues its children with lower bounds. The rows are taken in order
+  // of decreasing bound (computed with the parent's constraints only), so the children with
+  // small bounds, those likely to be expanded further, come last and carry the most fixed rows,
+  // i.e. the smallest subproblems (Miller, Stone & Cox, section III.C); infeasible children go
+  // first. Each child's key is then its bound under its own constraints, which is tighter.
   void partition(int id) {
     const Node node = nodes_[id];
     int* rows = free_.data() + node.free_begin;
     const std::pair<int, int>* forbid_list = forbidden_.data() + node.forbid_begin;
     load(id, rows, node.n_free);
     forbid(forbid_list, node.n_forbid, true);
+    avail_v_.resize(s_.m);
+    for (int j = 0; j < s_.m; ++j) avail_v_[j] = s_.excluded[j] ? -kInf : s_.v[j];
     bounds_.resize(s_.n);
-    for (int t = 0; t < node.n_free; ++t) {
-      const int i = rows[t], a = s_.col4row[i];
-      double row_min = kInf;
-      for (int j = 0; j < s_.m; ++j) {
-        if (!s_.excluded[j] && j != a) row_min = std::min(row_min, s_.reduced(i, j));
-      }
-      double col_min = s_.n < s_.m ? -s_.v[a] : kInf;
-      for (int q = 0; q < node.n_free; ++q) {
-        if (q != t) col_min = std::min(col_min, s_.reduced(rows[q], a));
-      }
-      bounds_[i] = std::max(0.0, row_min + col_min);  // >= 0 up to rounding
-    }
-    forbid(forbid_list, node.n_forbid, false);
-    // Largest bound first: the children most likely to be expanded come last and so carry the
-    // most fixed rows, i.e. the smallest subproblems. Infeasible children (bound inf) go first.
+    for (int t = 0; t < node.n_free; ++t) bounds_[rows[t]] = bound(rows[t], rows, node.n_free);
     std::stable_sort(rows, rows + node.n_free,
                      [&](int a, int b) { return bounds_[a] > bounds_[b]; });
-    // A margin for rounding in the duals, so a key never exceeds the child's computed cost.
+    // A margin for rounding in the duals, so that a key never exceeds the child's computed cost.
     const double margin = 1e-9 * (1.0 + std::abs(node.cost));
     for (int t = 0; t < node.n_free; ++t) {
-      const double b = bounds_[rows[t]];
-      if (b < kInf) queue_.push({node.cost + b - margin, id, t});
+      // Child t also fixes rows[0..t): their columns are not available to it.
+      const double b = bound(rows[t], rows + t + 1, node.n_free - t - 1);
+      if (b < kInf) queue_.push({node.cost + b - margin, id, t, false});
+      avail_v_[s_.col4row[rows[t]]] = -kInf;
     }
+    forbid(forbid_list, node.n_forbid, false);
   }
 
-  // Solves child t of node `parent` by one augmentation from the parent's solution and duals;
-  // on success appends it as a node and returns true.
-  bool solve_child(int parent, int t) {
+  // Solves child t of node `parent` by one augmentation from the parent's solution and duals.
+  // Returns its cost (inf if infeasible) and, with `keep`, appends it as a node.
+  double solve_child(int parent, int t, bool keep) {
     const Node p = nodes_[parent];
     const int* child_rows = free_.data() + p.free_begin + t;
     const int n_free = p.n_free - t;
@@ -370,11 +394,11 @@ class Murty {
     s_.row4col[a] = -1;
     const bool ok = s_.augment(row, a);
     forbid(child_forbid_.data(), nf, false);
-    if (!ok) return false;
+    if (!ok) return kInf;
+    if (!keep) return s_.total(cost_);
     // Copy the rows out first: `store` may reallocate free_.
     child_rows_.assign(child_rows, child_rows + n_free);
-    store(child_rows_.data(), n_free, child_forbid_.data(), nf);
-    return true;
+    return nodes_[store(child_rows_.data(), n_free, child_forbid_.data(), nf)].cost;
   }
 
   const Eigen::Ref<const Eigen::MatrixXd>& cost_;
@@ -385,7 +409,7 @@ class Murty {
   std::vector<int> col4row_;
   std::vector<double> u_, v_;
   std::priority_queue<Entry> queue_;
-  std::vector<double> bounds_;
+  std::vector<double> bounds_, avail_v_;
   std::vector<char> in_free_;
   std::vector<std::pair<int, int>> child_forbid_;
   std::vector<int> child_rows_;
