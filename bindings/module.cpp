@@ -11,5 +11,6 @@ PYBIND11_MODULE(_core, m) {
   pybind11::register_exception<vtrack::IoError>(m, "IoError", PyExc_OSError);
   vtrack::bindings::bind_core(m);
   vtrack::bindings::bind_image(m);
+  vtrack::bindings::bind_filters(m);
   vtrack::bindings::bind_apps(m);
 }
