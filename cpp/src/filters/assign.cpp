@@ -37,7 +37,7 @@ void check_cost(const Eigen::Ref<const Eigen::MatrixXd>& cost) {
 
 // The state of one rectangular assignment problem -- a row-major working copy of the costs, a
 // (partial) assignment and its duals -- and the shortest augmenting path step of Crouse (2016),
-// Algorithm 1, extended with the "released column" step Murty's subproblems need (below).
+// extended with the "released column" step Murty's subproblems need (below).
 class Solver {
  public:
   explicit Solver(const Eigen::Ref<const Eigen::MatrixXd>& cost)
@@ -97,18 +97,25 @@ class Solver {
       double lowest = kInf;
       std::size_t best = 0;
       if (i != kDummy) {
+        // The hot loop: raw pointers, so the compiler need not reload the vectors' data
+        // pointers after every store.
         const double* ci = &c[static_cast<std::size_t>(i) * m];
+        const double* vv = v.data();
+        const int* rem = remaining.data();
+        double* sp = spc.data();
+        int* pa = path.data();
         const double base = min_val - u[i];
-        for (std::size_t r = 0; r < remaining.size(); ++r) {
-          const int j = remaining[r];
-          const double d = base + ci[j] - v[j];
-          if (d < spc[j]) {
-            spc[j] = d;
-            path[j] = i;
+        const std::size_t count = remaining.size();
+        for (std::size_t r = 0; r < count; ++r) {
+          const int j = rem[r];
+          const double d = base + ci[j] - vv[j];
+          if (d < sp[j]) {
+            sp[j] = d;
+            pa[j] = i;
           }
           // Ties go to a sink: the path ends sooner (Crouse).
-          if (spc[j] < lowest || (spc[j] == lowest && is_sink(j))) {
-            lowest = spc[j];
+          if (sp[j] < lowest || (sp[j] == lowest && is_sink(j))) {
+            lowest = sp[j];
             best = r;
           }
         }
@@ -152,7 +159,7 @@ class Solver {
       }
     }
 
-    // Dual update (Crouse eqs. 16-17): keeps u_i + v_j <= c_ij, tight on the new path.
+    // Dual update as in Crouse (2016): keeps u_i + v_j <= c_ij, tight on the new path.
     u[row] += min_val;
     for (int r : scanned_rows) u[r] += min_val - spc[col4row[r]];
     for (int j : scanned_cols) v[j] -= min_val - spc[j];
@@ -216,7 +223,7 @@ class Solver {
 // with solution a along its free rows in order o_0, o_1, ... gives children t = 0, 1, ...: child
 // t fixes o_0..o_{t-1}, forbids (o_t, a(o_t)) and keeps P's other constraints; the children and
 // the assignment a partition P's feasible set (Murty 1968). A child is queued with a lower bound
-// and solved only when it reaches the front (Miller, Stone & Cox 1997, section III).
+// and solved only when it reaches the front (Miller, Stone & Cox 1997).
 class Murty {
  public:
   explicit Murty(const Eigen::Ref<const Eigen::MatrixXd>& cost) : cost_(cost), s_(cost) {}
@@ -316,7 +323,7 @@ class Murty {
   }
 
   // A lower bound on (child cost - parent cost) for the child that forbids row i its column
-  // a = a(i) (Miller, Stone & Cox, section III.B). With feasible duals, any assignment costs at
+  // a = a(i) (after Miller, Stone & Cox). With feasible duals, any assignment costs at
   // least the parent's cost plus the reduced costs of its pairs. The child must give row i another
   // available column (>= the smallest such reduced cost in row i), and column a must either go
   // to one of `rows` (the child's other free rows) or, when n < m, stay unassigned, which gives up
@@ -345,7 +352,7 @@ class Murty {
   // Partitions node `id` and queues its children with lower bounds. The rows are taken in order
   // of decreasing bound (computed with the parent's constraints only), so the children with
   // small bounds, those likely to be expanded further, come last and carry the most fixed rows,
-  // i.e. the smallest subproblems (Miller, Stone & Cox, section III.C); infeasible children go
+  // i.e. the smallest subproblems (Miller, Stone & Cox); infeasible children go
   // first. Each child's key is then its bound under its own constraints, which is tighter.
   void partition(int id) {
     const Node node = nodes_[id];

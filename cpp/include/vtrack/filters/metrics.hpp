@@ -41,7 +41,7 @@ GospaResult gospa(const Eigen::Ref<const Eigen::MatrixXd>& truth,
 
 // OSPA(2), the OSPA metric between sets of tracks (Beard, Vo & Vo 2017, "OSPA(2): Using the OSPA
 // metric to evaluate multi-target tracking performance", ICCAIS; and 2020, "A solution for
-// large-scale multi-object tracking", IEEE TSP 68, section V-A), over a window of T time steps.
+// large-scale multi-object tracking", IEEE TSP 68), over a window of T time steps.
 //
 // A track is a T x d matrix whose row t is its state at step t, or all NaN where the track does
 // not exist; a track that exists at no step of the window is ignored. The base distance between
