@@ -51,7 +51,7 @@ def test_murty_matches_brute_force(seed):
     rng = np.random.default_rng(seed)
     for trial in range(40):
         n = int(rng.integers(1, 6))
-        m = n + int(rng.integers(0, 3))
+        m = min(n + int(rng.integers(0, 4)), 7)  # square to wide: 1 x 1 ... 4 x 7
         cost = random_cost(rng, n, m, integer=trial % 2 == 0, p_inf=(trial % 3) * 0.2)
         check_against_brute_force(cost, int(rng.integers(1, 200)))
 
@@ -67,15 +67,19 @@ def test_all_ties_gives_every_assignment_once():
     check_against_brute_force(np.zeros((3, 5)), 1000)  # 5 * 4 * 3 = 60 assignments
 
 
-def test_glmb_shaped_matrix():
+def test_glmb_shaped_matrices():
     # n tracks x (m detections + n missed-detection columns); the missed column of track i is
-    # allowed for track i only. Costs are negative log-likelihood ratios, often negative.
+    # allowed for track i only; some detections are gated out. Costs are negative
+    # log-likelihood ratios, often negative.
     rng = np.random.default_rng(3)
-    n, m = 4, 3
-    cost = np.full((n, m + n), np.inf)
-    cost[:, :m] = rng.normal(-1.0, 2.0, size=(n, m))
-    cost[np.arange(n), m + np.arange(n)] = rng.uniform(0.0, 1.0, size=n)
-    check_against_brute_force(cost, 5000)
+    for _ in range(40):
+        n, m = int(rng.integers(1, 5)), int(rng.integers(0, 5))
+        cost = np.full((n, m + n), np.inf)
+        det = rng.normal(-1.0, 2.0, size=(n, m))
+        det[rng.random((n, m)) < 0.3] = np.inf
+        cost[:, :m] = det
+        cost[np.arange(n), m + np.arange(n)] = rng.uniform(0.0, 1.0, size=n)
+        check_against_brute_force(cost, int(rng.integers(1, 2000)))
 
 
 def test_first_best_equals_scipy():
