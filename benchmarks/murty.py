@@ -66,6 +66,8 @@ def reference_murty(cost, k):
         total, _, cols, fixed, banned = heapq.heappop(heap)
         costs.append(total)
         assignments.append(cols)
+        if len(costs) == k:
+            break
         child_fixed = dict(fixed)
         for i in range(n):
             if i in fixed:

@@ -250,8 +250,13 @@ class Murty {
         }
         // Its exact cost reached the front: it is next. Solving again to keep its state costs
         // one augmentation per output, far less than storing every solved child.
-        solve_child(e.node, e.child, true);
+        const double c = solve_child(e.node, e.child, true);
         id = static_cast<int>(nodes_.size()) - 1;
+        if (!queue_.empty() && c > queue_.top().key) {
+          // An exact bound's key sits a rounding margin below the cost: requeue if that matters.
+          queue_.push({c, id, -1, true});
+          continue;
+        }
       }
       out_costs.push_back(nodes_[id].cost);
       out.insert(out.end(), col4row_.begin() + static_cast<std::ptrdiff_t>(id) * n,
@@ -330,23 +335,41 @@ class Murty {
   // its dual v_a <= 0 (>= -v_a). These are two different pairs, so the two minima add up.
   // avail_v_[j] is v_j for an available column and -inf otherwise, so that the row minimum is one
   // branch-free (vectorisable) pass: min_j (c_ij - avail_v_j) - u_i.
-  double bound(int i, const int* rows, int count) {
+  struct Bound {
+    double value;
+    bool exact;  // an augmenting path of exactly this length exists: it is the child's cost
+  };
+  Bound bound(int i, const int* rows, int count) {
     const int a = s_.col4row[i];
     const double saved = avail_v_[a];
     avail_v_[a] = -kInf;
     const double* ci = &s_.at(i, 0);
-    double row_min = kInf;
+    double raw_min = kInf;
     for (int j = 0; j < s_.m; ++j) {
       const double r = ci[j] - avail_v_[j];
-      row_min = r < row_min ? r : row_min;
+      raw_min = r < raw_min ? r : raw_min;
     }
-    row_min -= s_.u[i];
-    avail_v_[a] = saved;
+    const auto row_min_at = [&](int j) { return ci[j] - avail_v_[j] == raw_min; };
     double col_min = s_.n < s_.m ? -s_.v[a] : kInf;
     for (int q = 0; q < count; ++q) {
       if (rows[q] != i) col_min = std::min(col_min, s_.reduced(rows[q], a));
     }
-    return std::max(0.0, row_min + col_min);  // >= 0 up to rounding; inf: infeasible child
+    // The bound is attained when the two minima chain into one augmenting path: row i moves to
+    // an unassigned column and a is left unassigned (through a dummy row), or row i takes the
+    // column of a row q that takes a. Common in GLMB-shaped problems; it saves a solve.
+    bool exact = false;
+    if (raw_min < kInf && col_min < kInf) {
+      if (s_.n < s_.m && -s_.v[a] == col_min) {
+        for (int j = 0; j < s_.m && !exact; ++j) exact = s_.row4col[j] < 0 && row_min_at(j);
+      }
+      for (int q = 0; q < count && !exact; ++q) {
+        const int r = rows[q];
+        exact = r != i && s_.reduced(r, a) == col_min && row_min_at(s_.col4row[r]);
+      }
+    }
+    avail_v_[a] = saved;
+    // >= 0 up to rounding; inf: infeasible child.
+    return {std::max(0.0, raw_min - s_.u[i] + col_min), exact};
   }
 
   // Partitions node `id` and queues its children with lower bounds. The rows are taken in order
@@ -363,15 +386,18 @@ class Murty {
     avail_v_.resize(s_.m);
     for (int j = 0; j < s_.m; ++j) avail_v_[j] = s_.excluded[j] ? -kInf : s_.v[j];
     bounds_.resize(s_.n);
-    for (int t = 0; t < node.n_free; ++t) bounds_[rows[t]] = bound(rows[t], rows, node.n_free);
-    std::stable_sort(rows, rows + node.n_free,
-                     [&](int a, int b) { return bounds_[a] > bounds_[b]; });
+    for (int t = 0; t < node.n_free; ++t) {
+      bounds_[rows[t]] = bound(rows[t], rows, node.n_free).value;
+    }
+    std::sort(rows, rows + node.n_free, [&](int a, int b) {  // ties by row: deterministic
+      return bounds_[a] > bounds_[b] || (bounds_[a] == bounds_[b] && a < b);
+    });
     // A margin for rounding in the duals, so that a key never exceeds the child's computed cost.
     const double margin = 1e-9 * (1.0 + std::abs(node.cost));
     for (int t = 0; t < node.n_free; ++t) {
       // Child t also fixes rows[0..t): their columns are not available to it.
-      const double b = bound(rows[t], rows + t + 1, node.n_free - t - 1);
-      if (b < kInf) queue_.push({node.cost + b - margin, id, t, false});
+      const Bound b = bound(rows[t], rows + t + 1, node.n_free - t - 1);
+      if (b.value < kInf) queue_.push({node.cost + b.value - margin, id, t, b.exact});
       avail_v_[s_.col4row[rows[t]]] = -kInf;
     }
     forbid(forbid_list, node.n_forbid, false);
