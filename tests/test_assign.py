@@ -139,3 +139,16 @@ def test_bad_input():
         vtrack.linear_assignment(np.array([["a", "b"]]))
     with pytest.raises(TypeError):
         vtrack.murty(np.zeros((2, 2)), 1.5)
+
+
+def test_threads_get_the_same_results():
+    # The solver keeps no global state and releases the GIL: concurrent calls agree.
+    from concurrent.futures import ThreadPoolExecutor
+
+    rng = np.random.default_rng(9)
+    costs = [rng.random((30, 40)) for _ in range(8)]
+    expected = [vtrack.murty(c, 50)[1] for c in costs]
+    with ThreadPoolExecutor(max_workers=4) as pool:
+        got = list(pool.map(lambda c: vtrack.murty(c, 50)[1], costs))
+    for e, g in zip(expected, got):
+        np.testing.assert_array_equal(e, g)

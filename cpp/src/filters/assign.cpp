@@ -251,6 +251,7 @@ class Murty {
         // Its exact cost reached the front: it is next. Solving again to keep its state costs
         // one augmentation per output, far less than storing every solved child.
         const double c = solve_child(e.node, e.child, true);
+        if (c == kInf) continue;  // not reachable: a solved or exact-bound child is feasible
         id = static_cast<int>(nodes_.size()) - 1;
         if (!queue_.empty() && c > queue_.top().key) {
           // An exact bound's key sits a rounding margin below the cost: requeue if that matters.
