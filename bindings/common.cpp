@@ -55,6 +55,10 @@ py::array_t<double> as_matrix(const py::handle& obj, const char* name, Nan nan) 
   return as_float64(obj, name, 2, nan);
 }
 
+py::array_t<double> as_array(const py::handle& obj, const char* name, int ndim, Nan nan) {
+  return as_float64(obj, name, ndim, nan);
+}
+
 cv::Mat bgr_frame(const py::handle& obj, const char* name, py::array& keep) {
   py::array a = py::array::ensure(obj);
   if (!a) throw py::type_error(std::string(name) + " must be a NumPy array");

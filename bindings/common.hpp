@@ -27,6 +27,10 @@ py::array_t<double> as_vector(const py::handle& obj, const char* name, Nan nan =
 // A 2-D C-contiguous float64 array, same rules as as_vector.
 py::array_t<double> as_matrix(const py::handle& obj, const char* name, Nan nan = Nan::Rejected);
 
+// An `ndim`-D C-contiguous float64 array, same rules as as_vector.
+py::array_t<double> as_array(const py::handle& obj, const char* name, int ndim,
+                             Nan nan = Nan::Rejected);
+
 inline Eigen::Map<const Eigen::VectorXd> vector_map(const py::array_t<double>& a) {
   return {a.data(), static_cast<Eigen::Index>(a.size())};
 }
@@ -50,6 +54,7 @@ core::Rng& rng_from(const py::handle& rng, core::Rng& storage);
 
 void bind_core(py::module_& m);
 void bind_image(py::module_& m);
+void bind_filters(py::module_& m);
 void bind_apps(py::module_& m);
 
 }  // namespace vtrack::bindings

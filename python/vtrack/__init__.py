@@ -14,6 +14,9 @@ This release holds the SMC core the trackers are built from:
 >>> vtrack.resample(w, rng, method="systematic")
 array([1, 2, 2])
 
+and the data-association and evaluation tools of the trackers: ``linear_assignment``, Murty's
+k-best assignments ``murty``, and the OSPA, OSPA(2) and GOSPA metrics.
+
 NumPy arrays go in and out without copies where the layout allows; wrong dtypes raise
 ``TypeError``, wrong shapes or values ``ValueError`` (C++ errors arrive as
 ``vtrack.InvalidArgument``, a ``ValueError``, and ``vtrack.IoError``, an ``OSError``).
@@ -21,16 +24,23 @@ NumPy arrays go in and out without copies where the layout allows; wrong dtypes 
 
 from ._core import (
     Gaussian,
+    GospaResult,
     IntegralImage,
     InvalidArgument,
     IoError,
+    OspaResult,
     Rng,
     VideoInfo,
     __version__,
     bgr_to_rgi,
     effective_sample_size,
+    gospa,
+    linear_assignment,
     log_sum_exp,
+    murty,
     normalize_log_weights,
+    ospa,
+    ospa2,
     probe_video,
     resample,
 )
@@ -39,17 +49,24 @@ RESAMPLING_METHODS = ("multinomial", "stratified", "systematic", "residual")
 
 __all__ = [
     "Gaussian",
+    "GospaResult",
     "IntegralImage",
     "InvalidArgument",
     "IoError",
+    "OspaResult",
     "RESAMPLING_METHODS",
     "Rng",
     "VideoInfo",
     "__version__",
     "bgr_to_rgi",
     "effective_sample_size",
+    "gospa",
+    "linear_assignment",
     "log_sum_exp",
+    "murty",
     "normalize_log_weights",
+    "ospa",
+    "ospa2",
     "probe_video",
     "resample",
 ]

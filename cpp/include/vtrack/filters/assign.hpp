@@ -1,0 +1,51 @@
+#pragma once
+// Linear assignment and Murty's k-best ranked assignments (vtrack::assign).
+//
+// Problem: an n x m cost matrix C with n <= m; assign every row a distinct column, minimising the
+// sum of the chosen entries. Entries may be negative (GLMB costs are negative log-likelihood
+// ratios); +inf marks a forbidden pair. NaN and -inf are rejected.
+//
+// The solver is the shortest augmenting path method of Jonker & Volgenant (1987) in the
+// rectangular form of Crouse (2016), "On implementing 2D rectangular assignment algorithms", IEEE
+// TAES 52(4) (the algorithm SciPy's linear_sum_assignment uses). It keeps dual variables u (rows)
+// and v (columns) with u_i + v_j <= C_ij, equality on assigned pairs, v_j <= 0 and v_j = 0 on
+// unassigned columns; these certify optimality and let Murty's method warm-start its subproblems.
+//
+// Murty (1968), "An algorithm for ranking all the assignments in order of increasing cost", with
+// the speed-ups of Miller, Stone & Cox (1997), "Optimizing Murty's ranked assignment method",
+// IEEE TAES 33(3): each subproblem is solved by a single augmentation from its parent's solution
+// and duals, subproblems enter the queue with a dual lower bound and are solved only when they
+// reach its front, and rows are partitioned in order of decreasing lower bound.
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace vtrack::assign {
+
+// An optimal assignment with its certificate. `col_of_row[i]` is row i's column; `cost` the sum
+// of the assigned entries; `row_dual`, `col_dual` the duals u, v described above.
+struct LinearAssignment {
+  std::vector<int> col_of_row;
+  double cost = 0.0;
+  Eigen::VectorXd row_dual;
+  Eigen::VectorXd col_dual;
+};
+
+// Optimal assignment of an n x m cost matrix (n <= m). Throws InvalidArgument naming `cost` for
+// NaN or -inf entries, n > m, or a matrix with no feasible assignment (some set of rows whose
+// finite entries span fewer columns than rows). n = 0 gives the empty assignment of cost 0.
+LinearAssignment linear_assignment(const Eigen::Ref<const Eigen::MatrixXd>& cost);
+
+// The k' <= k best assignments in non-decreasing cost: row r of `assignments` (k' x n) gives each
+// row's column, `costs[r]` its total. k' < k exactly when fewer than k feasible assignments exist
+// (k' = 0 for an infeasible matrix). Equal costs appear in unspecified order but every assignment
+// is distinct. Throws InvalidArgument for the bad `cost` of linear_assignment (except
+// infeasibility) and for k <= 0.
+struct RankedAssignments {
+  Eigen::Matrix<std::int64_t, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> assignments;
+  Eigen::VectorXd costs;
+};
+RankedAssignments murty(const Eigen::Ref<const Eigen::MatrixXd>& cost, std::int64_t k);
+
+}  // namespace vtrack::assign

@@ -1,0 +1,477 @@
+#include "vtrack/filters/assign.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <queue>
+#include <string>
+#include <utility>
+
+#include "vtrack/core/errors.hpp"
+
+namespace vtrack::assign {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+std::string shape_string(const Eigen::Ref<const Eigen::MatrixXd>& cost) {
+  return "(" + std::to_string(cost.rows()) + ", " + std::to_string(cost.cols()) + ")";
+}
+
+void check_cost(const Eigen::Ref<const Eigen::MatrixXd>& cost) {
+  if (cost.rows() > cost.cols()) {
+    throw InvalidArgument("cost must have at most as many rows as columns (n <= m), got shape " +
+                          shape_string(cost));
+  }
+  for (Eigen::Index j = 0; j < cost.cols(); ++j) {
+    for (Eigen::Index i = 0; i < cost.rows(); ++i) {
+      const double c = cost(i, j);
+      if (std::isnan(c) || c == -kInf) {
+        throw InvalidArgument(std::string("cost contains ") + (std::isnan(c) ? "NaN" : "-inf") +
+                              " at (" + std::to_string(i) + ", " + std::to_string(j) +
+                              "); use +inf for forbidden pairs");
+      }
+    }
+  }
+}
+
+// The state of one rectangular assignment problem -- a row-major working copy of the costs, a
+// (partial) assignment and its duals -- and the shortest augmenting path step of Crouse (2016),
+// extended with the "released column" step Murty's subproblems need (below).
+class Solver {
+ public:
+  explicit Solver(const Eigen::Ref<const Eigen::MatrixXd>& cost)
+      : n(static_cast<int>(cost.rows())),
+        m(static_cast<int>(cost.cols())),
+        c(static_cast<std::size_t>(n) * m),
+        col4row(n, -1),
+        row4col(m, -1),
+        u(n, 0.0),
+        v(m, 0.0),
+        excluded(m, 0),
+        spc(m),
+        path(m) {
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < m; ++j) at(i, j) = cost(i, j);
+    }
+    remaining.reserve(m);
+    scanned_rows.reserve(n);
+    scanned_cols.reserve(m);
+  }
+
+  double& at(int i, int j) { return c[static_cast<std::size_t>(i) * m + j]; }
+  double reduced(int i, int j) { return at(i, j) - u[i] - v[j]; }
+
+  // Assigns the free row `row` along a shortest alternating path in reduced costs, over the
+  // columns not `excluded` (those of rows fixed by Murty's partitioning), and updates the duals
+  // so that they stay feasible and tight. Returns false, leaving assignment and duals unchanged,
+  // when no augmenting path exists (the problem is infeasible).
+  //
+  // released < 0: the ordinary step; the path may end at any unassigned column (Crouse).
+  // released >= 0: Murty's subproblem (Miller, Stone & Cox 1997): `row` has just been unassigned
+  //   from column `released`, every other row keeps its parent-optimal column, and the parent's
+  //   duals are still feasible. Think of the rectangular problem as the square one with m - n
+  //   zero-cost dummy rows owning the unassigned columns (dummy duals 0, which is exactly why v = 0
+  //   on unassigned columns). Then `released` is the only free column, and a path may pass from an
+  //   unassigned column through its dummy row to any column j at reduced cost -v_j. All dummy rows
+  //   are identical, so only the first one reached can shorten any path: it is scanned once and
+  //   the other unassigned columns are settled at the same time. Afterwards the duals are
+  //   shifted so that the dummy duals are 0 again. One such step solves the subproblem exactly.
+  bool augment(int row, int released) {
+    remaining.clear();
+    for (int j = 0; j < m; ++j) {
+      if (!excluded[j]) {
+        remaining.push_back(j);
+        spc[j] = kInf;
+      }
+    }
+    scanned_rows.clear();
+    scanned_cols.clear();
+    const auto is_sink = [&](int j) { return released < 0 ? row4col[j] < 0 : j == released; };
+    double min_val = 0.0;
+    int i = row;                      // the row to scan next, or kDummy
+    int relay = -1;                   // the unassigned column through which the dummy was entered
+    double relay_dist = 0.0;
+    int sink = -1;
+    while (sink < 0) {
+      double lowest = kInf;
+      std::size_t best = 0;
+      if (i != kDummy) {
+        // The hot loop: raw pointers, so the compiler need not reload the vectors' data
+        // pointers after every store.
+        const double* ci = &c[static_cast<std::size_t>(i) * m];
+        const double* vv = v.data();
+        const int* rem = remaining.data();
+        double* sp = spc.data();
+        int* pa = path.data();
+        const double base = min_val - u[i];
+        const std::size_t count = remaining.size();
+        for (std::size_t r = 0; r < count; ++r) {
+          const int j = rem[r];
+          const double d = base + ci[j] - vv[j];
+          if (d < sp[j]) {
+            sp[j] = d;
+            pa[j] = i;
+          }
+          // Ties go to a sink: the path ends sooner (Crouse).
+          if (sp[j] < lowest || (sp[j] == lowest && is_sink(j))) {
+            lowest = sp[j];
+            best = r;
+          }
+        }
+      } else {
+        for (std::size_t r = 0; r < remaining.size();) {
+          const int j = remaining[r];
+          const double d = min_val - v[j];
+          if (d < spc[j]) {
+            spc[j] = d;
+            path[j] = kDummy;
+          }
+          if (row4col[j] < 0 && j != released) {
+            // Another unassigned column: its dummy row adds nothing, settle it now.
+            scanned_cols.push_back(j);
+            remaining[r] = remaining.back();
+            remaining.pop_back();
+            continue;
+          }
+          if (spc[j] < lowest || (spc[j] == lowest && is_sink(j))) {
+            lowest = spc[j];
+            best = r;
+          }
+          ++r;
+        }
+      }
+      if (lowest == kInf) return false;  // nothing reachable: no duals or assignment were touched
+      min_val = lowest;
+      const int j = remaining[best];
+      remaining[best] = remaining.back();
+      remaining.pop_back();
+      scanned_cols.push_back(j);
+      if (is_sink(j)) {
+        sink = j;
+      } else if (row4col[j] >= 0) {
+        i = row4col[j];
+        scanned_rows.push_back(i);
+      } else {  // released >= 0 and j is unassigned: enter the dummy rows
+        relay = j;
+        relay_dist = min_val;
+        i = kDummy;
+      }
+    }
+
+    // Dual update as in Crouse (2016): keeps u_i + v_j <= c_ij, tight on the new path.
+    u[row] += min_val;
+    for (int r : scanned_rows) u[r] += min_val - spc[col4row[r]];
+    for (int j : scanned_cols) v[j] -= min_val - spc[j];
+    if (relay >= 0) {
+      // The scanned dummy rows' duals rose by `shift`; move it onto the real rows so that they
+      // are 0 again (reduced costs of real pairs unchanged, v = 0 on unassigned columns).
+      const double shift = min_val - relay_dist;
+      for (double& x : u) x -= shift;
+      for (double& x : v) x += shift;
+    }
+
+    // Flip the path, walking back from the sink.
+    int j = sink;
+    while (true) {
+      const int r = path[j];
+      if (r == kDummy) {  // the dummy took j (now unassigned) and gave up the relay column
+        row4col[j] = -1;
+        j = relay;
+        continue;
+      }
+      row4col[j] = r;
+      std::swap(col4row[r], j);
+      if (r == row) break;
+    }
+    return true;
+  }
+
+  // Solves from scratch (all rows free, duals 0). Returns the first row that cannot be assigned,
+  // or -1 on success.
+  int solve() {
+    for (int i = 0; i < n; ++i) {
+      if (!augment(i, -1)) return i;
+    }
+    return -1;
+  }
+
+  double total(const Eigen::Ref<const Eigen::MatrixXd>& cost) const {
+    double s = 0.0;
+    for (int i = 0; i < n; ++i) s += cost(i, col4row[i]);
+    return s;
+  }
+
+  static constexpr int kDummy = -2;
+  const int n, m;
+  std::vector<double> c;
+  std::vector<int> col4row, row4col;
+  std::vector<double> u, v;
+  std::vector<char> excluded;
+
+ private:
+  std::vector<double> spc;  // shortest path cost to each column (reduced)
+  std::vector<int> path;    // the row (or kDummy) the shortest path reaches each column from
+  std::vector<int> remaining, scanned_rows, scanned_cols;
+};
+
+// Murty's partition tree, stored flat so that a call allocates a few growing arrays rather than
+// one set of vectors per node (the GLMB calls this thousands of times on small matrices).
+//
+// A solved node is a subproblem of the original: rows outside its `free` list are fixed to their
+// columns in its solution, and pairs in its `forbidden` list are excluded. Partitioning node P
+// with solution a along its free rows in order o_0, o_1, ... gives children t = 0, 1, ...: child
+// t fixes o_0..o_{t-1}, forbids (o_t, a(o_t)) and keeps P's other constraints; the children and
+// the assignment a partition P's feasible set (Murty 1968). A child is queued with a lower bound
+// and solved only when it reaches the front (Miller, Stone & Cox 1997).
+class Murty {
+ public:
+  explicit Murty(const Eigen::Ref<const Eigen::MatrixXd>& cost) : cost_(cost), s_(cost) {}
+
+  RankedAssignments run(std::int64_t k) {
+    const int n = s_.n;
+    std::vector<std::int64_t> out;
+    std::vector<double> out_costs;
+    if (s_.solve() < 0) {
+      std::vector<int> all(n);
+      for (int i = 0; i < n; ++i) all[i] = i;
+      const int root = store(all.data(), n, nullptr, 0);
+      queue_.push({nodes_[root].cost, root, -1, true});
+    }
+    while (static_cast<std::int64_t>(out_costs.size()) < k && !queue_.empty()) {
+      const Entry e = queue_.top();
+      queue_.pop();
+      int id = e.node;
+      if (e.child >= 0) {
+        if (!e.solved) {  // a lower bound reached the front: solve, requeue with the exact cost
+          const double c = solve_child(e.node, e.child, false);
+          if (c < kInf) queue_.push({c, e.node, e.child, true});
+          continue;
+        }
+        // Its exact cost reached the front: it is next. Solving again to keep its state costs
+        // one augmentation per output, far less than storing every solved child.
+        const double c = solve_child(e.node, e.child, true);
+        if (c == kInf) continue;  // not reachable: a solved or exact-bound child is feasible
+        id = static_cast<int>(nodes_.size()) - 1;
+        if (!queue_.empty() && c > queue_.top().key) {
+          // An exact bound's key sits a rounding margin below the cost: requeue if that matters.
+          queue_.push({c, id, -1, true});
+          continue;
+        }
+      }
+      out_costs.push_back(nodes_[id].cost);
+      out.insert(out.end(), col4row_.begin() + static_cast<std::ptrdiff_t>(id) * n,
+                 col4row_.begin() + static_cast<std::ptrdiff_t>(id + 1) * n);
+      if (static_cast<std::int64_t>(out_costs.size()) < k) partition(id);
+    }
+    RankedAssignments result;
+    const auto count = static_cast<Eigen::Index>(out_costs.size());
+    result.assignments.resize(count, n);
+    std::copy(out.begin(), out.end(), result.assignments.data());
+    result.costs = Eigen::Map<const Eigen::VectorXd>(out_costs.data(), count);
+    return result;
+  }
+
+ private:
+  struct Node {
+    double cost;
+    int free_begin, n_free;      // into free_
+    int forbid_begin, n_forbid;  // into forbidden_
+  };
+  // A queue entry: the stored node `node` (child < 0), or child number `child` of stored node
+  // `node`, keyed by its exact cost (solved) or by a lower bound. Among equal keys exact costs
+  // come first.
+  struct Entry {
+    double key;
+    int node, child;
+    bool solved;
+    bool operator<(const Entry& o) const {  // std::priority_queue pops the largest
+      if (key != o.key) return key > o.key;
+      return !solved && o.solved;
+    }
+  };
+
+  // Appends the solver's current assignment and duals as a new node.
+  int store(const int* free_rows, int n_free, const std::pair<int, int>* forbid, int n_forbid) {
+    Node node{s_.total(cost_), static_cast<int>(free_.size()), n_free,
+              static_cast<int>(forbidden_.size()), n_forbid};
+    free_.insert(free_.end(), free_rows, free_rows + n_free);
+    forbidden_.insert(forbidden_.end(), forbid, forbid + n_forbid);
+    col4row_.insert(col4row_.end(), s_.col4row.begin(), s_.col4row.end());
+    u_.insert(u_.end(), s_.u.begin(), s_.u.end());
+    v_.insert(v_.end(), s_.v.begin(), s_.v.end());
+    nodes_.push_back(node);
+    return static_cast<int>(nodes_.size()) - 1;
+  }
+
+  // Loads node `id`'s solution and duals into the solver, with the rows outside
+  // free_rows[0..n_free) fixed (their columns excluded).
+  void load(int id, const int* free_rows, int n_free) {
+    const int n = s_.n, m = s_.m;
+    std::copy_n(col4row_.begin() + static_cast<std::ptrdiff_t>(id) * n, n, s_.col4row.begin());
+    std::copy_n(u_.begin() + static_cast<std::ptrdiff_t>(id) * n, n, s_.u.begin());
+    std::copy_n(v_.begin() + static_cast<std::ptrdiff_t>(id) * m, m, s_.v.begin());
+    std::fill(s_.row4col.begin(), s_.row4col.end(), -1);
+    std::fill(s_.excluded.begin(), s_.excluded.end(), 1);
+    for (int i = 0; i < n; ++i) s_.row4col[s_.col4row[i]] = i;
+    for (int j = 0; j < m; ++j) {
+      if (s_.row4col[j] < 0) s_.excluded[j] = 0;
+    }
+    for (int t = 0; t < n_free; ++t) s_.excluded[s_.col4row[free_rows[t]]] = 0;
+  }
+
+  // Sets (or restores) the forbidden entries of the working matrix.
+  void forbid(const std::pair<int, int>* pairs, int count, bool on) {
+    for (int q = 0; q < count; ++q) {
+      const auto [i, j] = pairs[q];
+      s_.at(i, j) = on ? kInf : cost_(i, j);
+    }
+  }
+
+  // A lower bound on (child cost - parent cost) for the child that forbids row i its column
+  // a = a(i) (after Miller, Stone & Cox). With feasible duals, any assignment costs at
+  // least the parent's cost plus the reduced costs of its pairs. The child must give row i another
+  // available column (>= the smallest such reduced cost in row i), and column a must either go
+  // to one of `rows` (the child's other free rows) or, when n < m, stay unassigned, which gives up
+  // its dual v_a <= 0 (>= -v_a). These are two different pairs, so the two minima add up.
+  // avail_v_[j] is v_j for an available column and -inf otherwise, so that the row minimum is one
+  // branch-free (vectorisable) pass: min_j (c_ij - avail_v_j) - u_i.
+  struct Bound {
+    double value;
+    bool exact;  // an augmenting path of exactly this length exists: it is the child's cost
+  };
+  Bound bound(int i, const int* rows, int count) {
+    const int a = s_.col4row[i];
+    const double saved = avail_v_[a];
+    avail_v_[a] = -kInf;
+    const double* ci = &s_.at(i, 0);
+    double raw_min = kInf;
+    for (int j = 0; j < s_.m; ++j) {
+      const double r = ci[j] - avail_v_[j];
+      raw_min = r < raw_min ? r : raw_min;
+    }
+    const auto row_min_at = [&](int j) { return ci[j] - avail_v_[j] == raw_min; };
+    double col_min = s_.n < s_.m ? -s_.v[a] : kInf;
+    for (int q = 0; q < count; ++q) {
+      if (rows[q] != i) col_min = std::min(col_min, s_.reduced(rows[q], a));
+    }
+    // The bound is attained when the two minima chain into one augmenting path: row i moves to
+    // an unassigned column and a is left unassigned (through a dummy row), or row i takes the
+    // column of a row q that takes a. Common in GLMB-shaped problems; it saves a solve.
+    bool exact = false;
+    if (raw_min < kInf && col_min < kInf) {
+      if (s_.n < s_.m && -s_.v[a] == col_min) {
+        for (int j = 0; j < s_.m && !exact; ++j) exact = s_.row4col[j] < 0 && row_min_at(j);
+      }
+      for (int q = 0; q < count && !exact; ++q) {
+        const int r = rows[q];
+        exact = r != i && s_.reduced(r, a) == col_min && row_min_at(s_.col4row[r]);
+      }
+    }
+    avail_v_[a] = saved;
+    // >= 0 up to rounding; inf: infeasible child.
+    return {std::max(0.0, raw_min - s_.u[i] + col_min), exact};
+  }
+
+  // Partitions node `id` and queues its children with lower bounds. The rows are taken in order
+  // of decreasing bound (computed with the parent's constraints only), so the children with
+  // small bounds, those likely to be expanded further, come last and carry the most fixed rows,
+  // i.e. the smallest subproblems (Miller, Stone & Cox); infeasible children go
+  // first. Each child's key is then its bound under its own constraints, which is tighter.
+  void partition(int id) {
+    const Node node = nodes_[id];
+    int* rows = free_.data() + node.free_begin;
+    const std::pair<int, int>* forbid_list = forbidden_.data() + node.forbid_begin;
+    load(id, rows, node.n_free);
+    forbid(forbid_list, node.n_forbid, true);
+    avail_v_.resize(s_.m);
+    for (int j = 0; j < s_.m; ++j) avail_v_[j] = s_.excluded[j] ? -kInf : s_.v[j];
+    bounds_.resize(s_.n);
+    for (int t = 0; t < node.n_free; ++t) {
+      bounds_[rows[t]] = bound(rows[t], rows, node.n_free).value;
+    }
+    std::sort(rows, rows + node.n_free, [&](int a, int b) {  // ties by row: deterministic
+      return bounds_[a] > bounds_[b] || (bounds_[a] == bounds_[b] && a < b);
+    });
+    // A margin for rounding in the duals, so that a key never exceeds the child's computed cost.
+    const double margin = 1e-9 * (1.0 + std::abs(node.cost));
+    for (int t = 0; t < node.n_free; ++t) {
+      // Child t also fixes rows[0..t): their columns are not available to it.
+      const Bound b = bound(rows[t], rows + t + 1, node.n_free - t - 1);
+      if (b.value < kInf) queue_.push({node.cost + b.value - margin, id, t, b.exact});
+      avail_v_[s_.col4row[rows[t]]] = -kInf;
+    }
+    forbid(forbid_list, node.n_forbid, false);
+  }
+
+  // Solves child t of node `parent` by one augmentation from the parent's solution and duals.
+  // Returns its cost (inf if infeasible) and, with `keep`, appends it as a node.
+  double solve_child(int parent, int t, bool keep) {
+    const Node p = nodes_[parent];
+    const int* child_rows = free_.data() + p.free_begin + t;
+    const int n_free = p.n_free - t;
+    const int row = child_rows[0];
+    load(parent, child_rows, n_free);
+    const int a = s_.col4row[row];
+    // The child's forbidden pairs: the parent's that are on its free rows, and (row, a).
+    in_free_.assign(s_.n, 0);
+    for (int q = 0; q < n_free; ++q) in_free_[child_rows[q]] = 1;
+    child_forbid_.clear();
+    for (int q = 0; q < p.n_forbid; ++q) {
+      const auto f = forbidden_[p.forbid_begin + q];
+      if (in_free_[f.first]) child_forbid_.push_back(f);
+    }
+    child_forbid_.emplace_back(row, a);
+    const int nf = static_cast<int>(child_forbid_.size());
+    forbid(child_forbid_.data(), nf, true);
+    s_.col4row[row] = -1;
+    s_.row4col[a] = -1;
+    const bool ok = s_.augment(row, a);
+    forbid(child_forbid_.data(), nf, false);
+    if (!ok) return kInf;
+    if (!keep) return s_.total(cost_);
+    // Copy the rows out first: `store` may reallocate free_.
+    child_rows_.assign(child_rows, child_rows + n_free);
+    return nodes_[store(child_rows_.data(), n_free, child_forbid_.data(), nf)].cost;
+  }
+
+  const Eigen::Ref<const Eigen::MatrixXd>& cost_;
+  Solver s_;
+  std::vector<Node> nodes_;
+  std::vector<int> free_;
+  std::vector<std::pair<int, int>> forbidden_;
+  std::vector<int> col4row_;
+  std::vector<double> u_, v_;
+  std::priority_queue<Entry> queue_;
+  std::vector<double> bounds_, avail_v_;
+  std::vector<char> in_free_;
+  std::vector<std::pair<int, int>> child_forbid_;
+  std::vector<int> child_rows_;
+};
+
+}  // namespace
+
+LinearAssignment linear_assignment(const Eigen::Ref<const Eigen::MatrixXd>& cost) {
+  check_cost(cost);
+  Solver s(cost);
+  const int failed = s.solve();
+  if (failed >= 0) {
+    throw InvalidArgument("cost " + shape_string(cost) +
+                          " has no feasible assignment: rows 0.." + std::to_string(failed) +
+                          " cannot all get distinct columns with finite cost");
+  }
+  LinearAssignment result;
+  result.col_of_row = s.col4row;
+  result.cost = s.total(cost);
+  result.row_dual = Eigen::Map<const Eigen::VectorXd>(s.u.data(), s.n);
+  result.col_dual = Eigen::Map<const Eigen::VectorXd>(s.v.data(), s.m);
+  return result;
+}
+
+RankedAssignments murty(const Eigen::Ref<const Eigen::MatrixXd>& cost, std::int64_t k) {
+  check_cost(cost);
+  if (k <= 0) throw InvalidArgument("k must be >= 1, got " + std::to_string(k));
+  return Murty(cost).run(k);
+}
+
+}  // namespace vtrack::assign

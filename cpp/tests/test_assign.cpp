@@ -1,0 +1,222 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <set>
+#include <vector>
+
+#include "vtrack/core/errors.hpp"
+#include "vtrack/core/random.hpp"
+#include "vtrack/filters/assign.hpp"
+
+using namespace vtrack;
+using namespace vtrack::assign;
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Costs of every feasible assignment (each row a distinct column, no +inf), sorted: the
+// independent reference Murty must reproduce.
+std::vector<double> brute_force_costs(const Eigen::MatrixXd& c) {
+  const int n = static_cast<int>(c.rows()), m = static_cast<int>(c.cols());
+  std::vector<double> costs;
+  std::vector<int> cols(n);
+  std::vector<char> used(m, 0);
+  std::function<void(int, double)> rec = [&](int i, double sum) {
+    if (i == n) {
+      costs.push_back(sum);
+      return;
+    }
+    for (int j = 0; j < m; ++j) {
+      if (used[j] || c(i, j) == kInf) continue;
+      used[j] = 1;
+      rec(i + 1, sum + c(i, j));
+      used[j] = 0;
+    }
+  };
+  rec(0, 0.0);
+  std::sort(costs.begin(), costs.end());
+  return costs;
+}
+
+// Random n x m matrix: integer costs in [-4, 5] (many ties) or uniform reals, with a fraction of
+// +inf entries.
+Eigen::MatrixXd random_cost(core::Rng& rng, int n, int m, bool integer, double p_inf) {
+  Eigen::MatrixXd c(n, m);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < m; ++j) {
+      const double x = rng.uniform();
+      c(i, j) = integer ? std::floor(10.0 * x) - 4.0 : 20.0 * x - 10.0;
+      if (rng.uniform() < p_inf) c(i, j) = kInf;
+    }
+  }
+  return c;
+}
+
+void expect_matches_brute_force(const Eigen::MatrixXd& c, int k) {
+  const auto expected = brute_force_costs(c);
+  const auto got = murty(c, k);
+  const auto want = std::min<std::size_t>(expected.size(), k);
+  ASSERT_EQ(static_cast<std::size_t>(got.costs.size()), want) << c;
+  std::set<std::vector<std::int64_t>> distinct;
+  for (Eigen::Index r = 0; r < got.costs.size(); ++r) {
+    EXPECT_NEAR(got.costs[r], expected[r], 1e-9) << "rank " << r << "\n" << c;
+    if (r > 0) {
+      EXPECT_GE(got.costs[r], got.costs[r - 1]);
+    }
+    std::vector<std::int64_t> a(got.assignments.row(r).begin(), got.assignments.row(r).end());
+    double sum = 0.0;
+    std::set<std::int64_t> cols(a.begin(), a.end());
+    EXPECT_EQ(cols.size(), a.size());
+    for (std::size_t i = 0; i < a.size(); ++i) sum += c(static_cast<Eigen::Index>(i), a[i]);
+    EXPECT_NEAR(sum, got.costs[r], 1e-9);
+    distinct.insert(a);
+  }
+  EXPECT_EQ(distinct.size(), want);
+}
+
+}  // namespace
+
+TEST(LinearAssignment, SolvesASmallSquareProblem) {
+  Eigen::MatrixXd c(3, 3);
+  c << 4, 1, 3,
+       2, 0, 5,
+       3, 2, 2;
+  const auto s = linear_assignment(c);
+  EXPECT_EQ(s.col_of_row, (std::vector<int>{1, 0, 2}));
+  EXPECT_DOUBLE_EQ(s.cost, 5.0);
+}
+
+TEST(LinearAssignment, DualsCertifyOptimality) {
+  // u_i + v_j <= c_ij everywhere, equality on assigned pairs, v <= 0 and v = 0 on unassigned
+  // columns: then sum(u) + sum(v) = cost is the LP dual bound.
+  core::Rng rng(3);
+  for (int trial = 0; trial < 50; ++trial) {
+    const Eigen::MatrixXd c = random_cost(rng, 6, 9, false, 0.2);
+    LinearAssignment s;
+    try {
+      s = linear_assignment(c);
+    } catch (const InvalidArgument&) {
+      continue;  // infeasible draw
+    }
+    std::vector<char> used(c.cols(), 0);
+    for (int i = 0; i < c.rows(); ++i) {
+      used[s.col_of_row[i]] = 1;
+      EXPECT_NEAR(c(i, s.col_of_row[i]), s.row_dual[i] + s.col_dual[s.col_of_row[i]], 1e-9);
+      for (int j = 0; j < c.cols(); ++j) EXPECT_LE(s.row_dual[i] + s.col_dual[j], c(i, j) + 1e-9);
+    }
+    for (int j = 0; j < c.cols(); ++j) {
+      EXPECT_LE(s.col_dual[j], 1e-12);
+      if (!used[j]) {
+        EXPECT_EQ(s.col_dual[j], 0.0);
+      }
+    }
+    EXPECT_NEAR(s.row_dual.sum() + s.col_dual.sum(), s.cost, 1e-9);
+    EXPECT_NEAR(s.cost, brute_force_costs(c).front(), 1e-9);
+  }
+}
+
+TEST(LinearAssignment, InfeasibleMatrixIsAClearError) {
+  Eigen::MatrixXd c(2, 3);
+  c << 1, kInf, kInf,
+       2, kInf, kInf;  // both rows can only use column 0
+  EXPECT_THROW(linear_assignment(c), InvalidArgument);
+  Eigen::MatrixXd empty_row = Eigen::MatrixXd::Constant(2, 2, kInf);
+  empty_row(0, 0) = 1.0;
+  EXPECT_THROW(linear_assignment(empty_row), InvalidArgument);
+}
+
+TEST(LinearAssignment, EmptyProblemHasCostZero) {
+  const auto s = linear_assignment(Eigen::MatrixXd(0, 4));
+  EXPECT_TRUE(s.col_of_row.empty());
+  EXPECT_EQ(s.cost, 0.0);
+}
+
+TEST(Assign, BadInputNamesTheArgument) {
+  const auto message = [](auto f) {
+    try {
+      f();
+    } catch (const InvalidArgument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  Eigen::MatrixXd tall = Eigen::MatrixXd::Zero(3, 2);
+  EXPECT_NE(message([&] { linear_assignment(tall); }).find("cost"), std::string::npos);
+  EXPECT_NE(message([&] { murty(tall, 3); }).find("(3, 2)"), std::string::npos);
+  Eigen::MatrixXd with_nan = Eigen::MatrixXd::Zero(2, 2);
+  with_nan(1, 0) = std::nan("");
+  EXPECT_NE(message([&] { murty(with_nan, 1); }).find("cost contains NaN at (1, 0)"),
+            std::string::npos);
+  with_nan(1, 0) = -kInf;
+  EXPECT_NE(message([&] { linear_assignment(with_nan); }).find("-inf"), std::string::npos);
+  EXPECT_NE(message([&] { murty(Eigen::MatrixXd::Zero(2, 2), 0); }).find("k must be >= 1, got 0"),
+            std::string::npos);
+  EXPECT_NE(message([&] { murty(Eigen::MatrixXd::Zero(2, 2), -3); }).find("-3"),
+            std::string::npos);
+}
+
+TEST(Murty, MatchesBruteForceOnRandomMatrices) {
+  core::Rng rng(17);
+  for (int trial = 0; trial < 300; ++trial) {
+    const int n = 1 + static_cast<int>(rng.uniform() * 5);             // 1..5
+    const int m = n + static_cast<int>(rng.uniform() * 3);             // n..n+2
+    const bool integer = trial % 2 == 0;                               // ties
+    const double p_inf = (trial % 3) * 0.2;                            // 0, 0.2, 0.4
+    const Eigen::MatrixXd c = random_cost(rng, n, m, integer, p_inf);
+    expect_matches_brute_force(c, 1 + static_cast<int>(rng.uniform() * 150));
+  }
+}
+
+TEST(Murty, ReturnsAllAssignmentsWhenKExceedsTheFeasibleCount) {
+  core::Rng rng(5);
+  const Eigen::MatrixXd c = random_cost(rng, 4, 5, true, 0.3);
+  expect_matches_brute_force(c, 100000);
+  // All-equal costs: every one of the 5!/1! = 120 assignments, distinct.
+  expect_matches_brute_force(Eigen::MatrixXd::Ones(4, 5), 1000);
+}
+
+TEST(Murty, GlmbShapedMatrix) {
+  // n tracks x (m detections + n missed-detection columns), missed column i allowed only for
+  // track i: the shape the GLMB update ranks.
+  core::Rng rng(9);
+  const int n = 4, m = 3;
+  Eigen::MatrixXd c = Eigen::MatrixXd::Constant(n, m + n, kInf);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < m; ++j) c(i, j) = 5.0 * rng.uniform() - 4.0;
+    c(i, m + i) = rng.uniform();
+  }
+  expect_matches_brute_force(c, 1000);
+}
+
+TEST(Murty, InfeasibleMatrixGivesNoAssignments) {
+  Eigen::MatrixXd c = Eigen::MatrixXd::Constant(2, 3, kInf);
+  c(0, 1) = 1.0;
+  c(1, 1) = 2.0;
+  const auto r = murty(c, 5);
+  EXPECT_EQ(r.costs.size(), 0);
+  EXPECT_EQ(r.assignments.rows(), 0);
+  EXPECT_EQ(r.assignments.cols(), 2);
+}
+
+TEST(Murty, FirstEqualsLinearAssignmentOnLargerMatrices) {
+  core::Rng rng(23);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Eigen::MatrixXd c = random_cost(rng, 30, 30 + trial, false, 0.1);
+    const auto s = linear_assignment(c);
+    const auto r = murty(c, 50);
+    ASSERT_EQ(r.costs.size(), 50);
+    EXPECT_NEAR(r.costs[0], s.cost, 1e-9);
+    for (int q = 1; q < 50; ++q) EXPECT_GE(r.costs[q], r.costs[q - 1]);
+  }
+}
+
+TEST(Murty, EmptyProblemHasOneAssignment) {
+  const auto r = murty(Eigen::MatrixXd(0, 3), 4);
+  ASSERT_EQ(r.costs.size(), 1);
+  EXPECT_EQ(r.costs[0], 0.0);
+  EXPECT_EQ(r.assignments.cols(), 0);
+}
