@@ -1,0 +1,275 @@
+#include "vtrack/filters/glmb.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <string>
+#include <utility>
+
+#include "vtrack/core/errors.hpp"
+#include "vtrack/core/weights.hpp"
+#include "vtrack/filters/assign.hpp"
+
+namespace vtrack::filters {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+void require_probability(double p, const char* name, bool allow_one = true) {
+  if (!(p > 0.0) || p > 1.0 || (!allow_one && p == 1.0)) {
+    throw InvalidArgument(std::string(name) + " must lie in (0, 1" + (allow_one ? "]" : ")") +
+                          ", got " + std::to_string(p));
+  }
+}
+
+}  // namespace
+
+GaussianGlmbFilter::GaussianGlmbFilter(models::LinearGaussianMotion motion,
+                                       models::LinearGaussianObservation observation,
+                                       std::vector<GaussianBirth> births, GlmbParams params)
+    : motion_(std::move(motion)),
+      observation_(std::move(observation)),
+      births_(std::move(births)),
+      params_(params) {
+  const Eigen::Index x_dim = motion_.F.rows();
+  if (motion_.F.cols() != x_dim || motion_.Q.rows() != x_dim || motion_.Q.cols() != x_dim) {
+    throw InvalidArgument("motion model: F and Q must both be square of the state dimension");
+  }
+  if (observation_.H.cols() != x_dim || observation_.R.rows() != observation_.H.rows() ||
+      observation_.R.cols() != observation_.H.rows()) {
+    throw InvalidArgument("observation model: H must be z_dim x x_dim and R z_dim x z_dim");
+  }
+  require_probability(params_.survival_probability, "survival_probability");
+  require_probability(params_.detection_probability, "detection_probability");
+  if (!(params_.clutter_intensity > 0.0) || !std::isfinite(params_.clutter_intensity)) {
+    throw InvalidArgument("clutter_intensity must be positive and finite, got " +
+                          std::to_string(params_.clutter_intensity));
+  }
+  if (params_.hypothesis_budget <= 0) {
+    throw InvalidArgument("hypothesis_budget must be > 0, got " +
+                          std::to_string(params_.hypothesis_budget));
+  }
+  if (params_.max_hypotheses <= 0) {
+    throw InvalidArgument("max_hypotheses must be > 0, got " +
+                          std::to_string(params_.max_hypotheses));
+  }
+  if (!(params_.prune_threshold >= 0.0) || params_.prune_threshold >= 1.0) {
+    throw InvalidArgument("prune_threshold must lie in [0, 1), got " +
+                          std::to_string(params_.prune_threshold));
+  }
+  if (!(params_.gate_threshold > 0.0)) {
+    throw InvalidArgument("gate_threshold must be > 0 (or +inf for no gating), got " +
+                          std::to_string(params_.gate_threshold));
+  }
+  for (std::size_t b = 0; b < births_.size(); ++b) {
+    require_probability(births_[b].existence, "birth existence");
+    const auto& d = births_[b].density;
+    if (d.mean.size() != x_dim || d.cov.rows() != x_dim || d.cov.cols() != x_dim) {
+      throw InvalidArgument("birth component " + std::to_string(b) +
+                            " has the wrong state dimension");
+    }
+  }
+  hypotheses_.push_back({{}, 0.0});  // no target, probability 1
+}
+
+void GaussianGlmbFilter::step(const Eigen::Ref<const Eigen::MatrixXd>& detections) {
+  if (detections.rows() != observation_.H.rows() && detections.cols() > 0) {
+    throw InvalidArgument("detections must have " + std::to_string(observation_.H.rows()) +
+                          " rows (one detection per column), got " +
+                          std::to_string(detections.rows()));
+  }
+  if (!detections.allFinite()) throw InvalidArgument("detections contain NaN or inf");
+  ++time_;
+  const int n_prior = static_cast<int>(tracks_.size());
+  const int n_birth = static_cast<int>(births_.size());
+  const int n_rows = n_prior + n_birth;
+  const int n_det = static_cast<int>(detections.cols());
+
+  // Per candidate track (surviving prior tracks, then birth components): the predicted density,
+  // the log-probabilities of existing / not existing at this scan, and log(p_D g(z_j|x) / kappa)
+  // for every detection (-inf outside the gate). These factors are shared by all hypotheses.
+  std::vector<models::GaussianDensity> predicted;
+  std::vector<models::KalmanInnovation> innovations;
+  predicted.reserve(n_rows);
+  innovations.reserve(n_rows);
+  Eigen::VectorXd log_exists(n_rows), log_absent(n_rows);
+  Eigen::MatrixXd log_detected(n_rows, n_det);
+  const double log_pd_over_kappa =
+      std::log(params_.detection_probability) - std::log(params_.clutter_intensity);
+  const double log_missed = std::log1p(-params_.detection_probability);
+  for (int r = 0; r < n_rows; ++r) {
+    const bool is_birth = r >= n_prior;
+    predicted.push_back(is_birth ? births_[r - n_prior].density
+                                 : models::kalman_predict(tracks_[r].density, motion_));
+    const double p_exist =
+        is_birth ? births_[r - n_prior].existence : params_.survival_probability;
+    log_exists[r] = std::log(p_exist);
+    log_absent[r] = std::log1p(-p_exist);
+    innovations.emplace_back(predicted.back(), observation_);
+    for (int j = 0; j < n_det; ++j) {
+      const double d2 = innovations.back().mahalanobis_squared(detections.col(j));
+      log_detected(r, j) = d2 <= params_.gate_threshold
+                               ? log_pd_over_kappa + innovations.back().log_likelihood(detections.col(j))
+                               : -kInf;
+    }
+  }
+
+  // Requested solutions per prior hypothesis, proportional to sqrt(weight).
+  Eigen::VectorXd sqrt_w(hypotheses_.size());
+  for (std::size_t h = 0; h < hypotheses_.size(); ++h) {
+    sqrt_w[h] = std::exp(0.5 * hypotheses_[h].log_weight);
+  }
+  const double sqrt_total = sqrt_w.sum();
+
+  std::vector<Track> children;
+  std::map<std::pair<int, int>, int> child_of;  // (candidate row, detection or -1) -> child
+  auto child_index = [&](int row, int detection) {
+    const auto key = std::make_pair(row, detection);
+    const auto found = child_of.find(key);
+    if (found != child_of.end()) return found->second;
+    Track child;
+    child.label = row < n_prior ? tracks_[row].label : TrackLabel{time_, row - n_prior};
+    child.density = detection < 0 ? predicted[row]
+                                  : innovations[row].posterior(detections.col(detection));
+    children.push_back(std::move(child));
+    child_of.emplace(key, static_cast<int>(children.size()) - 1);
+    return static_cast<int>(children.size()) - 1;
+  };
+
+  std::map<std::vector<int>, double> posterior;  // track set -> log weight (unnormalised)
+  auto add_hypothesis = [&](std::vector<int> tracks, double log_weight) {
+    std::sort(tracks.begin(), tracks.end());
+    auto [it, inserted] = posterior.emplace(std::move(tracks), log_weight);
+    if (!inserted) {  // the same track histories reached from two parents: weights add
+      const double hi = std::max(it->second, log_weight);
+      it->second = hi + std::log(std::exp(it->second - hi) + std::exp(log_weight - hi));
+    }
+  };
+
+  std::vector<int> rows, columns;
+  for (std::size_t h = 0; h < hypotheses_.size(); ++h) {
+    const auto requested =
+        static_cast<std::int64_t>(std::round(params_.hypothesis_budget * sqrt_w[h] / sqrt_total));
+    if (requested < 1) continue;
+    rows.assign(hypotheses_[h].tracks.begin(), hypotheses_[h].tracks.end());
+    for (int b = 0; b < n_birth; ++b) rows.push_back(n_prior + b);
+    const int n = static_cast<int>(rows.size());
+    if (n == 0) {
+      add_hypothesis({}, hypotheses_[h].log_weight);
+      continue;
+    }
+    // Only detections some row can take enter the matrix.
+    columns.clear();
+    for (int j = 0; j < n_det; ++j) {
+      for (int r : rows) {
+        if (log_detected(r, j) > -kInf) {
+          columns.push_back(j);
+          break;
+        }
+      }
+    }
+    const int m = static_cast<int>(columns.size());
+    // Cost = -log of the factor each choice contributes to the posterior weight:
+    //   detection j:      p_exist p_D g(z_j|x) / kappa
+    //   missed (col m+i): p_exist (1 - p_D)
+    //   absent (m+n+i):   1 - p_exist (died, or not born)
+    Eigen::MatrixXd cost = Eigen::MatrixXd::Constant(n, m + 2 * n, kInf);
+    for (int i = 0; i < n; ++i) {
+      const int r = rows[i];
+      for (int c = 0; c < m; ++c) cost(i, c) = -(log_exists[r] + log_detected(r, columns[c]));
+      cost(i, m + i) = -(log_exists[r] + log_missed);
+      cost(i, m + n + i) = -log_absent[r];
+    }
+    const assign::RankedAssignments ranked = assign::murty(cost, requested);
+    std::vector<int> tracks;
+    for (Eigen::Index s = 0; s < ranked.costs.size(); ++s) {
+      tracks.clear();
+      for (int i = 0; i < n; ++i) {
+        const auto col = static_cast<int>(ranked.assignments(s, i));
+        if (col < m) {
+          tracks.push_back(child_index(rows[i], columns[col]));
+        } else if (col < m + n) {
+          tracks.push_back(child_index(rows[i], -1));
+        }
+      }
+      add_hypothesis(tracks, hypotheses_[h].log_weight - ranked.costs[s]);
+    }
+  }
+
+  // Normalise, prune, cap.
+  std::vector<Hypothesis> updated;
+  updated.reserve(posterior.size());
+  for (auto& [tracks, log_weight] : posterior) updated.push_back({tracks, log_weight});
+  if (updated.empty()) {
+    // Every hypothesis was infeasible (e.g. p_D = p_S = 1 with fewer detections than tracks):
+    // the data contradict the model, so restart from "no targets" rather than produce NaN.
+    tracks_.clear();
+    hypotheses_.assign(1, {{}, 0.0});
+    return;
+  }
+  auto normalise = [](std::vector<Hypothesis>& hs) {
+    Eigen::VectorXd lw(static_cast<Eigen::Index>(hs.size()));
+    for (std::size_t i = 0; i < hs.size(); ++i) lw[static_cast<Eigen::Index>(i)] = hs[i].log_weight;
+    const double total = core::log_sum_exp(lw);
+    for (auto& h : hs) h.log_weight -= total;
+  };
+  normalise(updated);
+  std::sort(updated.begin(), updated.end(),
+            [](const Hypothesis& a, const Hypothesis& b) { return a.log_weight > b.log_weight; });
+  const double log_prune = std::log(params_.prune_threshold);
+  std::size_t keep = 1;  // the best hypothesis always survives
+  while (keep < updated.size() && keep < static_cast<std::size_t>(params_.max_hypotheses) &&
+         updated[keep].log_weight >= log_prune) {
+    ++keep;
+  }
+  updated.resize(keep);
+  normalise(updated);
+
+  // Keep only the tracks some hypothesis still uses, renumbered in order.
+  std::vector<int> new_index(children.size(), -1);
+  tracks_.clear();
+  for (auto& h : updated) {
+    for (int& t : h.tracks) {
+      if (new_index[t] < 0) {
+        new_index[t] = static_cast<int>(tracks_.size());
+        tracks_.push_back(std::move(children[t]));
+      }
+      t = new_index[t];
+    }
+    std::sort(h.tracks.begin(), h.tracks.end());
+  }
+  hypotheses_ = std::move(updated);
+}
+
+Eigen::VectorXd GaussianGlmbFilter::cardinality_distribution() const {
+  std::size_t largest = 0;
+  for (const auto& h : hypotheses_) largest = std::max(largest, h.tracks.size());
+  Eigen::VectorXd p = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(largest) + 1);
+  for (const auto& h : hypotheses_) {
+    p[static_cast<Eigen::Index>(h.tracks.size())] += std::exp(h.log_weight);
+  }
+  return p;
+}
+
+int GaussianGlmbFilter::map_cardinality() const {
+  Eigen::Index n = 0;
+  cardinality_distribution().maxCoeff(&n);
+  return static_cast<int>(n);
+}
+
+std::vector<GlmbEstimate> GaussianGlmbFilter::estimates() const {
+  const std::size_t n = static_cast<std::size_t>(map_cardinality());
+  const Hypothesis* best = nullptr;
+  for (const auto& h : hypotheses_) {
+    if (h.tracks.size() == n && (!best || h.log_weight > best->log_weight)) best = &h;
+  }
+  std::vector<GlmbEstimate> out;
+  if (!best) return out;
+  for (int t : best->tracks) {
+    out.push_back({tracks_[t].label, tracks_[t].density.mean, tracks_[t].density.cov});
+  }
+  return out;
+}
+
+}  // namespace vtrack::filters
