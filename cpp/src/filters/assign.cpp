@@ -279,8 +279,8 @@ class Murty {
     int forbid_begin, n_forbid;  // into forbidden_
   };
   // A queue entry: the stored node `node` (child < 0), or child number `child` of stored node
-  // `node`, keyed by its exact cost (solved) or by a lower bound. Among equal keys exact costs
-  // come first.
+  // `node`, keyed by its cost when `solved` (computed, or a bound known to be attained) and by a
+  // lower bound otherwise. Among equal keys solved entries come first.
   struct Entry {
     double key;
     int node, child;

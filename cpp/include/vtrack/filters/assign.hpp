@@ -15,7 +15,8 @@
 // the speed-ups of Miller, Stone & Cox (1997), "Optimizing Murty's ranked assignment method",
 // IEEE TAES 33(3): each subproblem is solved by a single augmentation from its parent's solution
 // and duals, subproblems enter the queue with a dual lower bound and are solved only when they
-// reach its front, and rows are partitioned in order of decreasing lower bound.
+// reach its front (not at all when the bound is attained by a one- or two-edge path), and rows
+// are partitioned in order of decreasing lower bound.
 #include <cstdint>
 #include <vector>
 
