@@ -1,9 +1,11 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -160,4 +162,59 @@ TEST(Glmb, StandardScenarioMatchesTheReferenceOspa) {
   // The public reference reaches 11.61 on this draw (README of the data); allow a small margin
   // for different tie-breaking in the ranked assignments.
   EXPECT_LT(ospa_sum / 100, 12.5);
+}
+
+namespace {
+
+// One target that appears at scan 5 at (700, 700), far (> 900 m) from every fixed birth of the
+// standard scenario, detected at every scan, among 10 clutter points per scan. Returns, per scan,
+// the distance from the truth to the nearest estimate (+inf when there is none).
+std::vector<double> distances_to_a_target_far_from_the_fixed_births(bool adaptive) {
+  GlmbParams params;
+  params.clutter_intensity = 10.0 / 4e6;
+  if (adaptive) {
+    params.adaptive_birth.enabled = true;
+    // Position: the detection noise (R = 100) plus one scan of motion; velocity: sd 10 m/scan.
+    params.adaptive_birth.cov = Eigen::Vector4d(400.0, 100.0, 400.0, 100.0).asDiagonal();
+  }
+  const auto motion = standard_motion();
+  GaussianGlmbFilter glmb(motion, standard_observation(), standard_births(), params);
+  core::Rng rng(11);
+  Eigen::Vector4d truth(705.0, -5.0, 703.0, -3.0);  // at (700, 700) at scan 5
+  std::vector<double> distances;
+  for (int k = 1; k <= 30; ++k) {
+    const bool present = k >= 5;
+    if (present) truth = motion.F * truth;
+    Eigen::MatrixXd z(2, present ? 11 : 10);
+    for (int j = 0; j < 10; ++j) z.col(j) << -1000.0 + 2000.0 * rng.uniform(), -1000.0 + 2000.0 * rng.uniform();
+    if (present) z.col(10) << truth[0] + 10.0 * rng.normal(), truth[2] + 10.0 * rng.normal();
+    glmb.step(z);
+    double nearest = std::numeric_limits<double>::infinity();
+    if (present) {
+      for (const auto& e : glmb.estimates()) {
+        nearest = std::min(nearest, std::hypot(e.mean[0] - truth[0], e.mean[2] - truth[2]));
+      }
+    }
+    distances.push_back(nearest);
+  }
+  return distances;
+}
+
+}  // namespace
+
+TEST(Glmb, AdaptiveBirthTracksATargetFarFromTheFixedBirths) {
+  const auto with = distances_to_a_target_far_from_the_fixed_births(true);
+  const auto without = distances_to_a_target_far_from_the_fixed_births(false);
+  // Appears at scan 5 (index 4): tracked within 3 more scans and from then on, with adaptive birth.
+  for (int k = 8; k <= 30; ++k) EXPECT_LT(with[k - 1], 30.0) << "adaptive birth, scan " << k;
+  // The fixed births alone never reach it.
+  for (int k = 5; k <= 30; ++k) EXPECT_GT(without[k - 1], 100.0) << "fixed births, scan " << k;
+}
+
+TEST(Glmb, AdaptiveBirthNeedsACovarianceOfTheStateDimension) {
+  GlmbParams params;
+  params.adaptive_birth.enabled = true;
+  params.adaptive_birth.cov = Eigen::Matrix2d::Identity();
+  EXPECT_THROW(GaussianGlmbFilter(standard_motion(), standard_observation(), standard_births(), params),
+               InvalidArgument);
 }

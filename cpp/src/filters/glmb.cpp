@@ -7,6 +7,8 @@
 #include <string>
 #include <utility>
 
+#include <Eigen/Cholesky>
+
 #include "vtrack/core/errors.hpp"
 #include "vtrack/core/weights.hpp"
 #include "vtrack/filters/assign.hpp"
@@ -70,6 +72,19 @@ GaussianGlmbFilter::GaussianGlmbFilter(models::LinearGaussianMotion motion,
                             " has the wrong state dimension");
     }
   }
+  const auto& adaptive = params_.adaptive_birth;
+  if (adaptive.enabled) {
+    if (!(adaptive.expected_births > 0.0) || !std::isfinite(adaptive.expected_births)) {
+      throw InvalidArgument("adaptive_birth expected_births must be positive and finite, got " +
+                            std::to_string(adaptive.expected_births));
+    }
+    require_probability(adaptive.max_existence, "adaptive_birth max_existence", false);
+    if (adaptive.cov.rows() != x_dim || adaptive.cov.cols() != x_dim) {
+      throw InvalidArgument("adaptive_birth cov must be " + std::to_string(x_dim) + "x" +
+                            std::to_string(x_dim) + ", got " + std::to_string(adaptive.cov.rows()) +
+                            "x" + std::to_string(adaptive.cov.cols()));
+    }
+  }
   hypotheses_.push_back({{}, 0.0});  // no target, probability 1
 }
 
@@ -82,7 +97,17 @@ void GaussianGlmbFilter::step(const Eigen::Ref<const Eigen::MatrixXd>& detection
   if (!detections.allFinite()) throw InvalidArgument("detections contain NaN or inf");
   ++time_;
   const int n_prior = static_cast<int>(tracks_.size());
-  const int n_birth = static_cast<int>(births_.size());
+  const int n_fixed_birth = static_cast<int>(births_.size());
+  const int n_birth = n_fixed_birth + static_cast<int>(adaptive_births_.size());
+  // Birth component b: the fixed ones, then those proposed by the previous scan's detections.
+  auto birth = [&](int b) -> const GaussianBirth& {
+    return b < n_fixed_birth ? births_[b] : adaptive_births_[b - n_fixed_birth];
+  };
+  auto birth_label = [&](int b) {
+    return TrackLabel{time_, b < n_fixed_birth
+                                 ? b
+                                 : n_fixed_birth + adaptive_birth_detections_[b - n_fixed_birth]};
+  };
   const int n_rows = n_prior + n_birth;
   const int n_det = static_cast<int>(detections.cols());
 
@@ -100,10 +125,9 @@ void GaussianGlmbFilter::step(const Eigen::Ref<const Eigen::MatrixXd>& detection
   const double log_missed = std::log1p(-params_.detection_probability);
   for (int r = 0; r < n_rows; ++r) {
     const bool is_birth = r >= n_prior;
-    predicted.push_back(is_birth ? births_[r - n_prior].density
+    predicted.push_back(is_birth ? birth(r - n_prior).density
                                  : models::kalman_predict(tracks_[r].density, motion_));
-    const double p_exist =
-        is_birth ? births_[r - n_prior].existence : params_.survival_probability;
+    const double p_exist = is_birth ? birth(r - n_prior).existence : params_.survival_probability;
     log_exists[r] = std::log(p_exist);
     log_absent[r] = std::log1p(-p_exist);
     innovations.emplace_back(predicted.back(), observation_);
@@ -123,16 +147,18 @@ void GaussianGlmbFilter::step(const Eigen::Ref<const Eigen::MatrixXd>& detection
   const double sqrt_total = sqrt_w.sum();
 
   std::vector<Track> children;
+  std::vector<int> child_detection;  // the detection each child took, -1 if missed
   std::map<std::pair<int, int>, int> child_of;  // (candidate row, detection or -1) -> child
   auto child_index = [&](int row, int detection) {
     const auto key = std::make_pair(row, detection);
     const auto found = child_of.find(key);
     if (found != child_of.end()) return found->second;
     Track child;
-    child.label = row < n_prior ? tracks_[row].label : TrackLabel{time_, row - n_prior};
+    child.label = row < n_prior ? tracks_[row].label : birth_label(row - n_prior);
     child.density = detection < 0 ? predicted[row]
                                   : innovations[row].posterior(detections.col(detection));
     children.push_back(std::move(child));
+    child_detection.push_back(detection);
     child_of.emplace(key, static_cast<int>(children.size()) - 1);
     return static_cast<int>(children.size()) - 1;
   };
@@ -206,6 +232,7 @@ void GaussianGlmbFilter::step(const Eigen::Ref<const Eigen::MatrixXd>& detection
     // the data contradict the model, so restart from "no targets" rather than produce NaN.
     tracks_.clear();
     hypotheses_.assign(1, {{}, 0.0});
+    propose_adaptive_births(detections, Eigen::VectorXd::Zero(n_det));
     return;
   }
   auto normalise = [](std::vector<Hypothesis>& hs) {
@@ -226,6 +253,17 @@ void GaussianGlmbFilter::step(const Eigen::Ref<const Eigen::MatrixXd>& detection
   updated.resize(keep);
   normalise(updated);
 
+  if (params_.adaptive_birth.enabled) {
+    // r_U(z_j): the posterior probability that detection j was assigned to a track.
+    Eigen::VectorXd assigned = Eigen::VectorXd::Zero(n_det);
+    for (const auto& h : updated) {
+      for (int t : h.tracks) {
+        if (child_detection[t] >= 0) assigned[child_detection[t]] += std::exp(h.log_weight);
+      }
+    }
+    propose_adaptive_births(detections, assigned);
+  }
+
   // Keep only the tracks some hypothesis still uses, renumbered in order.
   std::vector<int> new_index(children.size(), -1);
   tracks_.clear();
@@ -240,6 +278,29 @@ void GaussianGlmbFilter::step(const Eigen::Ref<const Eigen::MatrixXd>& detection
     std::sort(h.tracks.begin(), h.tracks.end());
   }
   hypotheses_ = std::move(updated);
+}
+
+void GaussianGlmbFilter::propose_adaptive_births(
+    const Eigen::Ref<const Eigen::MatrixXd>& detections, const Eigen::VectorXd& assigned) {
+  adaptive_births_.clear();
+  adaptive_birth_detections_.clear();
+  const auto& adaptive = params_.adaptive_birth;
+  if (!adaptive.enabled || detections.cols() == 0) return;
+  const Eigen::VectorXd unassigned = (1.0 - assigned.array()).max(0.0).matrix();
+  const double total = unassigned.sum();
+  if (!(total > 0.0)) return;
+  // H^+ = H^T (H H^T)^-1 maps a detection to the least-norm state that predicts it.
+  const Eigen::MatrixXd& H = observation_.H;
+  const Eigen::LDLT<Eigen::MatrixXd> HHt(H * H.transpose());
+  for (Eigen::Index j = 0; j < detections.cols(); ++j) {
+    const double r =
+        std::min(adaptive.max_existence, adaptive.expected_births * unassigned[j] / total);
+    // A detection that tracks explain almost surely would only add a row that stays absent.
+    if (r < 1e-12) continue;
+    adaptive_births_.push_back(
+        {r, {H.transpose() * HHt.solve(Eigen::VectorXd(detections.col(j))), adaptive.cov}});
+    adaptive_birth_detections_.push_back(static_cast<int>(j));
+  }
 }
 
 Eigen::VectorXd GaussianGlmbFilter::cardinality_distribution() const {

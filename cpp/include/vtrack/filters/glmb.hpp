@@ -35,6 +35,21 @@ struct GaussianBirth {
   models::GaussianDensity density;
 };
 
+// Measurement-driven birth, as the adaptive birth of the LMB filter (Reuter, Vo, Vo & Dietmayer
+// 2014, "The labeled multi-Bernoulli filter", IEEE TSP 62(12), adaptive birth): every detection of
+// scan k-1 proposes a Bernoulli birth at scan k with existence
+//   r_B(z) = min(max_existence, expected_births (1 - r_U(z)) / sum_z' (1 - r_U(z'))),
+// where r_U(z) is the posterior probability that z was assigned to a track at scan k-1, so
+// detections that tracks explain propose (almost) nothing. The birth density is Gaussian, centred
+// on the state H^+ z (the least-norm state that predicts z exactly: zero velocity for a
+// position observation) with covariance `cov`. Fixed births (GaussianBirth) still apply.
+struct AdaptiveBirthParams {
+  bool enabled = false;
+  double expected_births = 0.1;  // lambda_B: expected number of adaptive births per scan
+  double max_existence = 0.03;   // r_B,max: cap on one detection's birth existence
+  Eigen::MatrixXd cov;           // x_dim x x_dim; must be given when enabled
+};
+
 struct GlmbParams {
   double survival_probability = 0.99;   // p_S (eq. 6)
   double detection_probability = 0.98;  // p_D (eq. 8's psi)
@@ -50,8 +65,11 @@ struct GlmbParams {
   // chi-square quantile of the gate probability (32.24 = P_G 0.9999999 for 2-D detections).
   // +inf disables gating (exact but slower).
   double gate_threshold = 32.24;
+  AdaptiveBirthParams adaptive_birth;
 };
 
+// Labels of adaptive births: birth_index = (number of fixed births) + (index of the proposing
+// detection in the previous scan's detection matrix).
 struct GlmbEstimate {
   TrackLabel label;
   Eigen::VectorXd mean;
@@ -77,6 +95,7 @@ class GaussianGlmbFilter {
   std::size_t hypothesis_count() const { return hypotheses_.size(); }
   std::size_t track_count() const { return tracks_.size(); }
   int time() const { return time_; }
+  Eigen::Index z_dim() const { return observation_.H.rows(); }
 
  private:
   struct Track {
@@ -88,10 +107,19 @@ class GaussianGlmbFilter {
     double log_weight = 0.0;  // normalised over hypotheses
   };
 
+  // Replaces adaptive_births_ by the births that `detections` propose for the next scan, given
+  // each detection's posterior probability of having been assigned to a track.
+  void propose_adaptive_births(const Eigen::Ref<const Eigen::MatrixXd>& detections,
+                               const Eigen::VectorXd& assigned);
+
   models::LinearGaussianMotion motion_;
   models::LinearGaussianObservation observation_;
   std::vector<GaussianBirth> births_;
   GlmbParams params_;
+  // The births proposed by the previous scan's detections (adaptive birth), used at this scan.
+  std::vector<GaussianBirth> adaptive_births_;
+  // Column indices (into the previous scan's detections) of adaptive_births_.
+  std::vector<int> adaptive_birth_detections_;
   std::vector<Track> tracks_;
   std::vector<Hypothesis> hypotheses_;
   int time_ = 0;
