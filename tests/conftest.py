@@ -59,3 +59,14 @@ def write_video(tmp_path):
 def random_frames(count, height=48, width=64, seed=0):
     rng = np.random.default_rng(seed)
     return [rng.integers(0, 256, (height, width, 3), dtype=np.uint8) for _ in range(count)]
+
+
+@pytest.fixture(scope="session")
+def glmb_standard_dir() -> Path:
+    """The shared standard GLMB scenario (../shared/data/glmb-standard beside the repository, or
+    $VTRACK_SHARED_DATA/glmb-standard); the test is skipped when it is absent."""
+    root = Path(os.environ.get("VTRACK_SHARED_DATA", REPO.parent / "shared" / "data"))
+    path = root / "glmb-standard"
+    if not (path / "truth.csv").exists():
+        pytest.skip(f"shared GLMB data not found at {path} (set VTRACK_SHARED_DATA)")
+    return path

@@ -14,6 +14,8 @@ This release holds the SMC core the trackers are built from:
 >>> vtrack.resample(w, rng, method="systematic")
 array([1, 2, 2])
 
+the GLMB multi-object tracker ``GlmbTracker`` (Gaussian delta-GLMB with Murty's ranked
+assignments) with its linear-Gaussian models and the synthetic scenarios of ``vtrack.scenarios``,
 and the data-association and evaluation tools of the trackers: ``linear_assignment``, Murty's
 k-best assignments ``murty``, and the OSPA, OSPA(2) and GOSPA metrics.
 
@@ -24,10 +26,14 @@ NumPy arrays go in and out without copies where the layout allows; wrong dtypes 
 
 from ._core import (
     Gaussian,
+    GlmbEstimate,
+    GlmbTracker,
     GospaResult,
     IntegralImage,
     InvalidArgument,
     IoError,
+    LinearGaussianMotion,
+    LinearGaussianObservation,
     OspaResult,
     Rng,
     VideoInfo,
@@ -45,14 +51,20 @@ from ._core import (
     resample,
 )
 
+from . import scenarios  # noqa: E402  (needs the compiled module above)
+
 RESAMPLING_METHODS = ("multinomial", "stratified", "systematic", "residual")
 
 __all__ = [
     "Gaussian",
+    "GlmbEstimate",
+    "GlmbTracker",
     "GospaResult",
     "IntegralImage",
     "InvalidArgument",
     "IoError",
+    "LinearGaussianMotion",
+    "LinearGaussianObservation",
     "OspaResult",
     "RESAMPLING_METHODS",
     "Rng",
@@ -69,4 +81,5 @@ __all__ = [
     "ospa2",
     "probe_video",
     "resample",
+    "scenarios",
 ]

@@ -1,7 +1,7 @@
 """Type stubs for the compiled module vtrack._core (use the public names in `vtrack`)."""
 
 from os import PathLike
-from typing import Literal, Optional, Tuple, Union, overload
+from typing import List, Literal, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -60,6 +60,68 @@ class IntegralImage:
     def sum(self, x: int, y: int, width: int, height: int) -> float: ...
     def area(self, x: int, y: int, width: int, height: int) -> int: ...
     def sums(self, rects: ArrayLike) -> npt.NDArray[np.float64]: ...
+
+# ---- models -------------------------------------------------------------------------------------
+
+class LinearGaussianMotion:
+    def __init__(self, F: ArrayLike, Q: ArrayLike) -> None: ...
+    @staticmethod
+    def constant_velocity(
+        axes: int = 2, period: float = 1.0, sigma_v: float = 5.0
+    ) -> LinearGaussianMotion: ...
+    @property
+    def F(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def Q(self) -> npt.NDArray[np.float64]: ...
+
+class LinearGaussianObservation:
+    def __init__(self, H: ArrayLike, R: ArrayLike) -> None: ...
+    @staticmethod
+    def position(axes: int = 2, R: ArrayLike = ...) -> LinearGaussianObservation: ...
+    @property
+    def H(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def R(self) -> npt.NDArray[np.float64]: ...
+
+# ---- filters: GLMB ------------------------------------------------------------------------------
+
+class GlmbEstimate:
+    @property
+    def label(self) -> Tuple[int, int]: ...
+    @property
+    def mean(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def cov(self) -> npt.NDArray[np.float64]: ...
+
+class GlmbTracker:
+    def __init__(
+        self,
+        motion: LinearGaussianMotion,
+        observation: LinearGaussianObservation,
+        births: Sequence[Tuple[float, ArrayLike, ArrayLike]],
+        *,
+        survival_probability: float = 0.99,
+        detection_probability: float = 0.98,
+        clutter_intensity: float = 7.5e-6,
+        hypothesis_budget: int = 1000,
+        max_hypotheses: int = 1000,
+        prune_threshold: float = 1e-15,
+        gate_threshold: float = 32.24,
+        adaptive_birth_cov: Optional[ArrayLike] = None,
+        adaptive_birth_rate: float = 0.1,
+        adaptive_birth_max_existence: float = 0.03,
+    ) -> None: ...
+    def step(self, detections: ArrayLike) -> List[GlmbEstimate]: ...
+    def estimates(self) -> List[GlmbEstimate]: ...
+    def cardinality_distribution(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def map_cardinality(self) -> int: ...
+    @property
+    def hypothesis_count(self) -> int: ...
+    @property
+    def track_count(self) -> int: ...
+    @property
+    def time(self) -> int: ...
 
 # ---- filters: assignment and metrics -----------------------------------------------------------
 

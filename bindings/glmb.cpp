@@ -1,0 +1,157 @@
+// Binding of vtrack::filters::GaussianGlmbFilter as vtrack.GlmbTracker.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common.hpp"
+#include "vtrack/filters/glmb.hpp"
+
+namespace vtrack::bindings {
+namespace {
+
+using filters::GaussianBirth;
+using filters::GaussianGlmbFilter;
+using filters::GlmbEstimate;
+using filters::GlmbParams;
+
+// births: a sequence of (existence, mean, cov) triples.
+std::vector<GaussianBirth> births_from(const py::handle& obj) {
+  if (!py::isinstance<py::sequence>(obj) || py::isinstance<py::str>(obj)) {
+    throw py::type_error("births must be a sequence of (existence, mean, cov) tuples");
+  }
+  std::vector<GaussianBirth> births;
+  for (const auto& item : obj.cast<py::sequence>()) {
+    if (!py::isinstance<py::sequence>(item) || py::len(item) != 3) {
+      throw py::type_error("births: each entry must be an (existence, mean, cov) tuple, got " +
+                           py::repr(item).cast<std::string>());
+    }
+    const auto triple = item.cast<py::sequence>();
+    auto mean = as_vector(triple[1], "births mean");
+    auto cov = as_matrix(triple[2], "births cov");
+    births.push_back({triple[0].cast<double>(), {vector_map(mean), matrix_map(cov)}});
+  }
+  return births;
+}
+
+py::tuple label_tuple(const filters::TrackLabel& l) {
+  return py::make_tuple(l.birth_time, l.birth_index);
+}
+
+}  // namespace
+
+void bind_glmb(py::module_& m) {
+  py::class_<GlmbEstimate>(m, "GlmbEstimate", "One labelled track estimate of a GlmbTracker.")
+      .def_property_readonly(
+          "label", [](const GlmbEstimate& e) { return label_tuple(e.label); },
+          "(birth_time, birth_index): the scan the track was born at (from 1) and the index of "
+          "its birth component (fixed births first, then adaptive births by detection index).")
+      .def_readonly("mean", &GlmbEstimate::mean, "State mean (x_dim,).")
+      .def_readonly("cov", &GlmbEstimate::cov, "State covariance (x_dim, x_dim).")
+      .def("__repr__", [](const GlmbEstimate& e) {
+        return "GlmbEstimate(label=" + py::repr(label_tuple(e.label)).cast<std::string>() +
+               ", mean=" + py::repr(py::cast(e.mean)).cast<std::string>() + ")";
+      });
+
+  const GlmbParams defaults;
+  py::class_<GaussianGlmbFilter>(m, "GlmbTracker", R"doc(
+Labelled multi-object tracker: the delta-GLMB filter with Gaussian track densities, in the joint
+prediction-update form of Vo, Vo & Hoang (IEEE TSP 2017) with Murty's ranked assignments
+(rgbd-glmb-switching-observation eqs. 5-8).
+
+motion: LinearGaussianMotion; observation: LinearGaussianObservation; births: a list of
+(existence, mean, cov), one labelled Bernoulli birth component each (LMB birth).
+Keyword parameters (defaults: the standard GLMB scenario's):
+  survival_probability  p_S
+  detection_probability p_D
+  clutter_intensity     Poisson clutter intensity per unit measurement volume (mean count /
+                        surveillance volume)
+  hypothesis_budget     posterior hypotheses requested per scan, shared among prior hypotheses
+                        in proportion to sqrt(weight)
+  max_hypotheses        cap after each update (largest weights kept)
+  prune_threshold       hypotheses below this normalised weight are dropped
+  gate_threshold        squared Mahalanobis gate (chi-square quantile; inf = no gating)
+  adaptive_birth_cov    if given (x_dim x x_dim), every detection also proposes a birth at the
+                        next scan, centred on H^+ z (zero velocity), with this covariance and
+                        existence min(adaptive_birth_max_existence,
+                        adaptive_birth_rate (1 - r_U(z)) / sum(1 - r_U)), r_U(z) the probability
+                        that z was assigned to a track (Reuter et al.'s LMB adaptive birth)
+  adaptive_birth_rate   expected number of adaptive births per scan (lambda_B)
+  adaptive_birth_max_existence  cap on one detection's birth existence
+
+Deterministic (no random numbers). step() releases the GIL; one tracker must not be stepped from
+two threads at once.
+)doc")
+      .def(py::init([](const models::LinearGaussianMotion& motion,
+                       const models::LinearGaussianObservation& observation,
+                       const py::handle& births, double survival_probability,
+                       double detection_probability, double clutter_intensity,
+                       int hypothesis_budget, int max_hypotheses, double prune_threshold,
+                       double gate_threshold, const py::handle& adaptive_birth_cov,
+                       double adaptive_birth_rate, double adaptive_birth_max_existence) {
+             GlmbParams p;
+             p.survival_probability = survival_probability;
+             p.detection_probability = detection_probability;
+             p.clutter_intensity = clutter_intensity;
+             p.hypothesis_budget = hypothesis_budget;
+             p.max_hypotheses = max_hypotheses;
+             p.prune_threshold = prune_threshold;
+             p.gate_threshold = gate_threshold;
+             if (!adaptive_birth_cov.is_none()) {
+               auto cov = as_matrix(adaptive_birth_cov, "adaptive_birth_cov");
+               p.adaptive_birth.enabled = true;
+               p.adaptive_birth.cov = matrix_map(cov);
+             }
+             p.adaptive_birth.expected_births = adaptive_birth_rate;
+             p.adaptive_birth.max_existence = adaptive_birth_max_existence;
+             return GaussianGlmbFilter(motion, observation, births_from(births), p);
+           }),
+           py::arg("motion"), py::arg("observation"), py::arg("births"), py::kw_only(),
+           py::arg("survival_probability") = defaults.survival_probability,
+           py::arg("detection_probability") = defaults.detection_probability,
+           py::arg("clutter_intensity") = defaults.clutter_intensity,
+           py::arg("hypothesis_budget") = defaults.hypothesis_budget,
+           py::arg("max_hypotheses") = defaults.max_hypotheses,
+           py::arg("prune_threshold") = defaults.prune_threshold,
+           py::arg("gate_threshold") = defaults.gate_threshold,
+           py::arg("adaptive_birth_cov") = py::none(),
+           py::arg("adaptive_birth_rate") = defaults.adaptive_birth.expected_births,
+           py::arg("adaptive_birth_max_existence") = defaults.adaptive_birth.max_existence)
+      .def(
+          "step",
+          [](GaussianGlmbFilter& f, const py::handle& detections) {
+            auto z = as_matrix(detections, "detections");
+            const auto z_dim = f.z_dim();
+            if (z.shape(1) != z_dim && z.shape(0) > 0) {
+              throw py::value_error("detections must have shape (M, " + std::to_string(z_dim) +
+                                    "), got (" + std::to_string(z.shape(0)) + ", " +
+                                    std::to_string(z.shape(1)) + ")");
+            }
+            {
+              py::gil_scoped_release release;
+              // Row-major M x z_dim is column-major z_dim x M: one detection per column.
+              f.step(Eigen::Map<const Eigen::MatrixXd>(z.data(), z_dim, z.shape(0)));
+            }
+            return f.estimates();
+          },
+          py::arg("detections"), R"doc(
+One joint prediction-update with the detections of the next scan, an (M, z_dim) array (M may be
+0), and the estimates at that scan (as estimates()). Raises TypeError for a non-numeric dtype and
+ValueError for a wrong shape or NaN/inf.
+)doc")
+      .def("estimates", &GaussianGlmbFilter::estimates, R"doc(
+The labelled estimates at the current scan, a list of GlmbEstimate: the tracks of the most
+probable hypothesis with the MAP cardinality.
+)doc")
+      .def("cardinality_distribution", &GaussianGlmbFilter::cardinality_distribution,
+           "P(n targets) for n = 0 .. the largest hypothesis size, a float64 array summing to 1.")
+      .def_property_readonly("map_cardinality", &GaussianGlmbFilter::map_cardinality,
+                             "The most probable number of targets.")
+      .def_property_readonly("hypothesis_count", &GaussianGlmbFilter::hypothesis_count,
+                             "Number of hypotheses kept after the last step.")
+      .def_property_readonly("track_count", &GaussianGlmbFilter::track_count,
+                             "Number of distinct track histories the hypotheses share.")
+      .def_property_readonly("time", &GaussianGlmbFilter::time,
+                             "Number of scans processed (the current scan index).");
+}
+
+}  // namespace vtrack::bindings
