@@ -30,6 +30,7 @@ demo: $(VENV)/.vtrack-installed $(VIDEO)
 bench: $(VENV)/.vtrack-installed $(VENV)/.bench-deps
 	$(PY) benchmarks/resampling.py
 	$(PY) benchmarks/murty.py
+	$(PY) benchmarks/glmb_standard.py
 
 build: $(VENV)/.vtrack-installed
 
