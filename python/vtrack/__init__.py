@@ -52,6 +52,7 @@ from ._core import (
 )
 
 from . import scenarios  # noqa: E402  (needs the compiled module above)
+from .boxes import track_detections  # noqa: E402
 
 RESAMPLING_METHODS = ("multinomial", "stratified", "systematic", "residual")
 
@@ -82,4 +83,5 @@ __all__ = [
     "probe_video",
     "resample",
     "scenarios",
+    "track_detections",
 ]
