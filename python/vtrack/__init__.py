@@ -4,7 +4,9 @@ The filters of four papers -- KDE background subtraction with a multi-Bernoulli
 track-before-detect tracker, SIR/MCMC particle filters, a GLMB tracker with Murty's ranked
 assignments, and colour/part-based particle filters -- in C++ with this Python API.
 
-This release holds the SMC core the trackers are built from:
+This release holds the SMC core the trackers are built from and the KDE background model
+(``KdeBackground``, paper eqs. 6-10) that turns video frames into the grey image the
+track-before-detect tracker consumes:
 
 >>> import numpy as np, vtrack
 >>> rng = vtrack.Rng(seed=1)
@@ -24,11 +26,14 @@ from ._core import (
     IntegralImage,
     InvalidArgument,
     IoError,
+    KdeBackground,
     Rng,
     VideoInfo,
     __version__,
     bgr_to_rgi,
+    close_square,
     effective_sample_size,
+    foreground_mask,
     log_sum_exp,
     normalize_log_weights,
     probe_video,
@@ -42,12 +47,15 @@ __all__ = [
     "IntegralImage",
     "InvalidArgument",
     "IoError",
+    "KdeBackground",
     "RESAMPLING_METHODS",
     "Rng",
     "VideoInfo",
     "__version__",
     "bgr_to_rgi",
+    "close_square",
     "effective_sample_size",
+    "foreground_mask",
     "log_sum_exp",
     "normalize_log_weights",
     "probe_video",
