@@ -102,16 +102,17 @@ class KdeBackground {
   cv::Size frame_size() const { return size_; }
 
  private:
-  void store_sample(const cv::Mat& bgr);
-  void evaluate(const cv::Mat& bgr, cv::Mat& y) const;
-  std::size_t plane_offset(int slot, int channel) const;
+  // Converts the frame (into slot new_slot when >= 0, a sample time) and writes eq. (10) into y.
+  void evaluate(const cv::Mat& bgr, int new_slot, cv::Mat& y);
+  float* plane(int slot, int channel);
 
   KdeBackgroundParams params_;
   bool learning_ = true;
   long long frame_index_ = 0;
   cv::Size size_;
-  // Ring buffer of samples: slot s holds planes B, G, R of area size_.area() bytes each.
-  std::vector<unsigned char> samples_;
+  // Ring buffer of samples: slot s holds the planes r, g, S of one frame (size_.area() floats
+  // each), pre-scaled by 1 / (sqrt(2) sigma_d) (see evaluate()).
+  std::vector<float> samples_;
   std::vector<long long> sample_frame_;  // frame index stored in each slot
   int count_ = 0;                        // samples in the stack, <= n_samples
   int next_slot_ = 0;                    // slot the next sample overwrites (the oldest when full)
