@@ -178,7 +178,7 @@ const std::vector<Command>& commands() {
        "                   corrupt, the images of the frames before the error stay and are valid\n"
        "  --samples N      N0, samples in the background stack (default 10)\n"
        "  --period K       K0, frames between samples (default 10)\n"
-       "  --bandwidth r,g,I  kernel bandwidths sigma_r,sigma_g,sigma_I (default 0.02,0.02,0.06)\n"
+       "  --bandwidth r,g,I  kernel bandwidths sigma_r,sigma_g,sigma_I (default 0.03,0.03,0.06)\n"
        "  --closing K      side of the square closing y, 0 = off (default 3)\n"
        "  --threads T      0 = OpenCV default, 1 = single thread (default 0)",
        run_bgs},

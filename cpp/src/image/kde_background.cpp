@@ -58,6 +58,12 @@ inline void chromaticity(float b, float g, float r, float& cr, float& cg, float&
   cg = black ? 1.0f / 3.0f : qg;
 }
 
+// The exponent factors 1 / (2 sigma_d^2) of eq. (10). Intensity differences are taken on the
+// channel sum S = 765 I (an exact integer), so its factor carries 1 / 765^2.
+struct Exponents {
+  float r, g, s;
+};
+
 }  // namespace
 
 void validate(const KdeBackgroundParams& p) {
@@ -100,9 +106,26 @@ std::vector<long long> KdeBackground::sample_frames() const {
   return frames;
 }
 
-float* KdeBackground::plane(int slot, int channel) {
-  return samples_.data() + (static_cast<std::size_t>(slot) * 3 + static_cast<std::size_t>(channel)) *
-                               static_cast<std::size_t>(size_.area());
+std::size_t KdeBackground::plane_offset(int slot, int channel) const {
+  return (static_cast<std::size_t>(slot) * 3 + static_cast<std::size_t>(channel)) *
+         static_cast<std::size_t>(size_.area());
+}
+
+void KdeBackground::store_sample(const cv::Mat& bgr) {
+  const std::size_t area = static_cast<std::size_t>(size_.area());
+  if (samples_.empty()) {
+    samples_.resize(area * 3 * static_cast<std::size_t>(params_.n_samples));
+    sample_frame_.assign(static_cast<std::size_t>(params_.n_samples), -1);
+  }
+  const int slot = next_slot_;
+  std::vector<cv::Mat> planes;
+  for (int c = 0; c < 3; ++c) {
+    planes.emplace_back(size_, CV_8UC1, samples_.data() + plane_offset(slot, c));
+  }
+  cv::split(bgr, planes);  // writes into the slot's memory: the headers match in size and type
+  sample_frame_[slot] = frame_index_;
+  next_slot_ = (slot + 1) % params_.n_samples;
+  count_ = std::min(count_ + 1, params_.n_samples);
 }
 
 void KdeBackground::apply(const cv::Mat& bgr, cv::Mat& y) {
@@ -120,78 +143,54 @@ void KdeBackground::apply(const cv::Mat& bgr, cv::Mat& y) {
                           size_string(size_) + " frames (call reset() to start a new stream)");
   }
   // The sample schedule of section 3.1: frames 0, K0, 2 K0, ...; the ring buffer replaces the
-  // oldest sample once N0 are stored. The new sample is part of the stack for this frame's y.
-  int new_slot = -1;
-  if (learning_ && frame_index_ % params_.period == 0) {
-    if (samples_.empty()) {
-      samples_.resize(static_cast<std::size_t>(size_.area()) * 3 *
-                      static_cast<std::size_t>(params_.n_samples));
-      sample_frame_.assign(static_cast<std::size_t>(params_.n_samples), -1);
-    }
-    new_slot = next_slot_;
-    sample_frame_[new_slot] = frame_index_;
-    next_slot_ = (new_slot + 1) % params_.n_samples;
-    count_ = std::min(count_ + 1, params_.n_samples);
-  }
+  // oldest sample once N0 are stored.
+  if (learning_ && frame_index_ % params_.period == 0) store_sample(bgr);
   const bool closing = params_.closing > 1;
   cv::Mat& raw = closing ? closing_buffer_ : y;
   raw.create(size_, CV_32FC1);
-  evaluate(bgr, new_slot, raw);
+  evaluate(bgr, raw);
   if (closing) close_square(raw, y, params_.closing, params_.threads, &closing_workspace_);
   ++frame_index_;
 }
 
-// Eq. (10) for every pixel, row by row. The rgI values are stored pre-scaled by
-// 1 / (sqrt(2) sigma_d), so the exponent of the product of the three kernels of eq. (10) is
-// the squared distance dr'^2 + dg'^2 + dI'^2 and each sample costs one exp. Per row, the
-// current frame is converted once (into the new sample's slot when this frame is a sample
-// time, else into a row buffer); then every sample adds its kernel product. The inner loops
-// run over contiguous floats.
-void KdeBackground::evaluate(const cv::Mat& bgr, int new_slot, cv::Mat& y) {
+// Eq. (10) for every pixel, row by row. Per row, the current frame's r, g and S are computed
+// once; then each sample adds its product of three kernels, exp(-(dr^2/2sr^2 + dg^2/2sg^2 +
+// dI^2/2sI^2)), one exp per sample. The inner loops are over contiguous floats and bytes.
+void KdeBackground::evaluate(const cv::Mat& bgr, cv::Mat& y) const {
   const int cols = size_.width;
   if (count_ == 0) {  // frozen before the first sample: no background model, no evidence
     y.setTo(1.0f);
     return;
   }
-  // I = S / 765 (color.hpp), so the intensity scale carries 1 / 765.
-  const float scale_r = static_cast<float>(1.0 / (std::sqrt(2.0) * params_.sigma_r));
-  const float scale_g = static_cast<float>(1.0 / (std::sqrt(2.0) * params_.sigma_g));
-  const float scale_s = static_cast<float>(1.0 / (std::sqrt(2.0) * params_.sigma_I * 765.0));
+  const Exponents k{static_cast<float>(0.5 / (params_.sigma_r * params_.sigma_r)),
+                    static_cast<float>(0.5 / (params_.sigma_g * params_.sigma_g)),
+                    static_cast<float>(0.5 / (params_.sigma_I * params_.sigma_I * 765.0 * 765.0))};
   const float inv_n = 1.0f / static_cast<float>(count_);
   const int n = params_.n_samples;
   const int oldest = count_ < n ? 0 : next_slot_;
-  std::vector<const float*> planes(static_cast<std::size_t>(count_) * 3);
-  for (int i = 0; i < count_; ++i) {
-    for (int c = 0; c < 3; ++c) planes[static_cast<std::size_t>(3 * i + c)] = plane((oldest + i) % n, c);
-  }
-  float* new_planes[3] = {nullptr, nullptr, nullptr};
-  if (new_slot >= 0) {
-    for (int c = 0; c < 3; ++c) new_planes[c] = plane(new_slot, c);
-  }
   detail::for_rows(size_.height, params_.threads, [&](int begin, int end) {
-    std::vector<float> buffer(new_slot >= 0 ? 0 : static_cast<std::size_t>(cols) * 3);
+    std::vector<float> buffer(static_cast<std::size_t>(cols) * 3);
+    float* cur_r = buffer.data();
+    float* cur_g = cur_r + cols;
+    float* cur_s = cur_g + cols;
     for (int row = begin; row < end; ++row) {
-      const std::size_t offset = static_cast<std::size_t>(row) * static_cast<std::size_t>(cols);
-      float* cur_r = new_slot >= 0 ? new_planes[0] + offset : buffer.data();
-      float* cur_g = new_slot >= 0 ? new_planes[1] + offset : buffer.data() + cols;
-      float* cur_s = new_slot >= 0 ? new_planes[2] + offset : buffer.data() + 2 * cols;
       const unsigned char* in = bgr.ptr<unsigned char>(row);
       for (int x = 0; x < cols; ++x) {
-        float r, g, s;
-        chromaticity(in[3 * x], in[3 * x + 1], in[3 * x + 2], r, g, s);
-        cur_r[x] = r * scale_r;
-        cur_g[x] = g * scale_g;
-        cur_s[x] = s * scale_s;
+        chromaticity(in[3 * x], in[3 * x + 1], in[3 * x + 2], cur_r[x], cur_g[x], cur_s[x]);
       }
       float* acc = y.ptr<float>(row);
       std::fill_n(acc, cols, 0.0f);
+      const std::size_t offset = static_cast<std::size_t>(row) * cols;
       for (int i = 0; i < count_; ++i) {
-        const float* sr = planes[static_cast<std::size_t>(3 * i)] + offset;
-        const float* sg = planes[static_cast<std::size_t>(3 * i + 1)] + offset;
-        const float* ss = planes[static_cast<std::size_t>(3 * i + 2)] + offset;
+        const int slot = (oldest + i) % n;
+        const unsigned char* sb = samples_.data() + plane_offset(slot, 0) + offset;
+        const unsigned char* sg = samples_.data() + plane_offset(slot, 1) + offset;
+        const unsigned char* sr = samples_.data() + plane_offset(slot, 2) + offset;
         for (int x = 0; x < cols; ++x) {
-          const float dr = cur_r[x] - sr[x], dg = cur_g[x] - sg[x], ds = cur_s[x] - ss[x];
-          acc[x] += exp_neg(dr * dr + dg * dg + ds * ds);
+          float r, g, s;
+          chromaticity(sb[x], sg[x], sr[x], r, g, s);
+          const float dr = cur_r[x] - r, dg = cur_g[x] - g, ds = cur_s[x] - s;
+          acc[x] += exp_neg(dr * dr * k.r + dg * dg * k.g + ds * ds * k.s);
         }
       }
       for (int x = 0; x < cols; ++x) acc[x] *= inv_n;
