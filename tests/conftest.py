@@ -1,30 +1,61 @@
-"""Shared pytest fixtures: the sample video (PETS2009 S2.L1, vtest.avi) and the vtrack executable."""
+"""Shared fixtures: the installed `vtrack` executable, the sample video, small synthetic videos."""
 
 import os
+import subprocess
 import sysconfig
 from pathlib import Path
 
+import numpy as np
 import pytest
 
+REPO = Path(__file__).resolve().parents[1]
 
-def _video_path() -> Path:
-    return Path(os.environ.get("VTRACK_VIDEO", Path.home() / ".cache" / "vtrack" / "vtest.avi"))
+
+def _vtrack_executable() -> Path:
+    # The wheel installs the CLI into the environment's scripts folder (.venv/bin).
+    return Path(sysconfig.get_path("scripts")) / "vtrack"
 
 
 @pytest.fixture(scope="session")
-def video_path() -> Path:
-    """vtest.avi: $VTRACK_VIDEO, else ~/.cache/vtrack/vtest.avi (`make test` fetches it)."""
-    path = _video_path()
-    if not path.is_file():
-        pytest.fail(f"sample video not found at {path}: run `make test` (which fetches it) "
-                    "or set VTRACK_VIDEO")
+def vtrack_cli():
+    exe = _vtrack_executable()
+    if not exe.exists():
+        pytest.fail(f"vtrack executable not installed at {exe} (run `make build`)")
+
+    def run(*args):
+        return subprocess.run([str(exe), *map(str, args)], capture_output=True, text=True,
+                              timeout=300)
+
+    return run
+
+
+@pytest.fixture(scope="session")
+def sample_video() -> Path:
+    """PETS2009 S2.L1 (vtest.avi), fetched by the Makefile into ~/.cache/vtrack."""
+    path = Path(os.environ.get("VTRACK_VIDEO", Path.home() / ".cache" / "vtrack" / "vtest.avi"))
+    if not path.exists():
+        pytest.fail(f"sample video missing at {path}: `make test` fetches it")
     return path
 
 
-@pytest.fixture(scope="session")
-def vtrack_exe() -> Path:
-    """The `vtrack` executable installed next to this Python (in .venv/bin)."""
-    exe = Path(sysconfig.get_path("scripts")) / "vtrack"
-    if not exe.is_file():
-        pytest.fail(f"vtrack executable not found at {exe}: install vtrack (`make build`)")
-    return exe
+@pytest.fixture
+def write_video(tmp_path):
+    """Writes `frames` (list of H x W x 3 uint8) as an MJPG .avi and returns its path."""
+    cv2 = pytest.importorskip("cv2")
+
+    def write(frames, name="clip.avi", fps=12.0):
+        path = tmp_path / name
+        h, w = frames[0].shape[:2]
+        writer = cv2.VideoWriter(str(path), cv2.VideoWriter_fourcc(*"MJPG"), fps, (w, h))
+        assert writer.isOpened()
+        for f in frames:
+            writer.write(f)
+        writer.release()
+        return path
+
+    return write
+
+
+def random_frames(count, height=48, width=64, seed=0):
+    rng = np.random.default_rng(seed)
+    return [rng.integers(0, 256, (height, width, 3), dtype=np.uint8) for _ in range(count)]

@@ -2,9 +2,6 @@
 on real frames of vtest.avi and on random images; the sample schedule frame by frame; closing,
 freeze/reset, masks; bad input; and the `vtrack bgs` command line."""
 
-import subprocess
-from pathlib import Path
-
 import cv2
 import numpy as np
 import pytest
@@ -16,13 +13,13 @@ TOLERANCE = 1e-3  # the issue's agreement bar
 
 
 @pytest.fixture(scope="module")
-def video_frames(video_path):
+def video_frames(sample_video):
     """The first 36 frames of vtest.avi, decoded once."""
-    cap = cv2.VideoCapture(str(video_path))
+    cap = cv2.VideoCapture(str(sample_video))
     frames = []
     while len(frames) < 36:
         ok, frame = cap.read()
-        assert ok, f"cannot decode frame {len(frames)} of {video_path}"
+        assert ok, f"cannot decode frame {len(frames)} of {sample_video}"
         frames.append(frame)
     return frames
 
@@ -166,32 +163,19 @@ def test_bad_parameters(kwargs, error, match):
 
 # ---- command line --------------------------------------------------------------------------------
 
-def write_clip(path, frames, fourcc="MJPG"):
-    writer = cv2.VideoWriter(str(path), cv2.VideoWriter_fourcc(*fourcc), 10.0,
-                             (frames[0].shape[1], frames[0].shape[0]))
-    assert writer.isOpened()
-    for f in frames:
-        writer.write(f)
-    writer.release()
-
-
 @pytest.fixture(scope="module")
 def small_frames(video_frames):
     """Frames of vtest.avi at a quarter size, as PNG images (lossless input for the CLI)."""
     return [cv2.resize(f, (192, 144), interpolation=cv2.INTER_AREA) for f in video_frames[:20]]
 
 
-def run(exe, *args):
-    return subprocess.run([str(exe), *map(str, args)], capture_output=True, text=True, timeout=120)
-
-
-def test_cli_writes_the_y_images_of_the_python_api(vtrack_exe, small_frames, tmp_path):
+def test_cli_writes_the_y_images_of_the_python_api(vtrack_cli, small_frames, tmp_path):
     folder = tmp_path / "frames"
     folder.mkdir()
     for i, f in enumerate(small_frames):
         cv2.imwrite(str(folder / f"{i:04d}.png"), f)
     out = tmp_path / "y"
-    proc = run(vtrack_exe, "bgs", folder, "--out", out, "--samples", 4, "--period", 3,
+    proc = vtrack_cli("bgs", folder, "--out", out, "--samples", 4, "--period", 3,
                "--bandwidth", "0.03,0.02,0.08", "--closing", 3, "--threads", 1)
     assert proc.returncode == 0, proc.stderr
     assert "bgs: frame 20/20" in proc.stderr
@@ -206,11 +190,10 @@ def test_cli_writes_the_y_images_of_the_python_api(vtrack_exe, small_frames, tmp
         assert np.abs(written.astype(int) - expected).max() <= 1  # rounding of .5 cases
 
 
-def test_cli_writes_a_video(vtrack_exe, small_frames, tmp_path):
-    clip = tmp_path / "clip.avi"
-    write_clip(clip, small_frames)
+def test_cli_writes_a_video(vtrack_cli, write_video, small_frames, tmp_path):
+    clip = write_video(small_frames)
     out = tmp_path / "y.mkv"
-    proc = run(vtrack_exe, "bgs", clip, "--out", out)
+    proc = vtrack_cli("bgs", clip, "--out", out)
     assert proc.returncode == 0, proc.stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == ["clip.avi", "y.mkv"]  # no partial file
     cap = cv2.VideoCapture(str(out))
@@ -220,14 +203,13 @@ def test_cli_writes_a_video(vtrack_exe, small_frames, tmp_path):
     assert count == len(small_frames)
 
 
-def test_cli_truncated_video_names_the_frame_and_keeps_complete_images(vtrack_exe, small_frames,
-                                                                        tmp_path):
-    clip = tmp_path / "clip.avi"
-    write_clip(clip, small_frames)
+def test_cli_truncated_video_names_the_frame_and_keeps_complete_images(vtrack_cli, write_video,
+                                                                        small_frames, tmp_path):
+    clip = write_video(small_frames)
     with open(clip, "r+b") as fh:
         fh.truncate(clip.stat().st_size // 2)
     out = tmp_path / "y"
-    proc = run(vtrack_exe, "bgs", clip, "--out", out)
+    proc = vtrack_cli("bgs", clip, "--out", out)
     assert proc.returncode == 1
     assert proc.stdout == ""
     line = proc.stderr.strip().splitlines()[-1]
@@ -239,7 +221,7 @@ def test_cli_truncated_video_names_the_frame_and_keeps_complete_images(vtrack_ex
     for name in names:
         assert cv2.imread(str(out / name), cv2.IMREAD_UNCHANGED).shape == (144, 192)
     # Video output: nothing is left behind, neither the output nor a partial file.
-    proc = run(vtrack_exe, "bgs", clip, "--out", tmp_path / "y.avi")
+    proc = vtrack_cli("bgs", clip, "--out", tmp_path / "y.avi")
     assert proc.returncode == 1 and f"frame {bad}" in proc.stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == ["clip.avi", "y"]
 
@@ -253,14 +235,14 @@ def test_cli_truncated_video_names_the_frame_and_keeps_complete_images(vtrack_ex
     (["--threads", "-1"], 2, "threads"),
     ([], 2, "--out"),
 ])
-def test_cli_bad_arguments(vtrack_exe, video_path, tmp_path, args, status, match):
+def test_cli_bad_arguments(vtrack_cli, sample_video, tmp_path, args, status, match):
     out = [] if not args else ["--out", tmp_path / "y"]
-    proc = run(vtrack_exe, "bgs", video_path, *out, *args)
+    proc = vtrack_cli("bgs", sample_video, *out, *args)
     assert proc.returncode == status
     assert proc.stderr.startswith("vtrack: error: ") and match in proc.stderr
     assert not (tmp_path / "y").exists()
 
 
-def test_cli_missing_video(vtrack_exe, tmp_path):
-    proc = run(vtrack_exe, "bgs", tmp_path / "nope.avi", "--out", tmp_path / "y")
+def test_cli_missing_video(vtrack_cli, tmp_path):
+    proc = vtrack_cli("bgs", tmp_path / "nope.avi", "--out", tmp_path / "y")
     assert proc.returncode == 1 and "nope.avi" in proc.stderr
