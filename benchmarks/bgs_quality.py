@@ -12,8 +12,8 @@ Over the frames after a warm-up, with the considered GT boxes (conf 1; the conf-
   * foreground share of the image.
 People fill roughly half to two thirds of their box, so neither proxy can reach 1, and some
 people far away are not annotated at all (see SOURCE.md of the GT), which lowers precision.
-Also writes a contact sheet PNG: per row one frame, with the GT boxes on the frame, on vtrack's
-y, and on the MOG2 and KNN foreground.
+Also writes a contact sheet PNG: per row one frame, with the GT boxes drawn on the frame, on
+vtrack's y, on vtrack's foreground mask and on the MOG2 and KNN foreground masks.
 
     python benchmarks/bgs_quality.py [--video PATH] [--gt PATH] [--out PNG] [--threshold T]
 
@@ -130,8 +130,8 @@ def main() -> None:
             y = vtrack.close_square(m.to_y(frame), args.closing)
             fg = vtrack.foreground_mask(y, threshold=args.threshold) > 0
             if k in sheet_frames:
-                shown = y if m is methods[0] else (~fg).astype(np.float32)
-                tiles.append(draw_boxes((shown * 255).astype(np.uint8), boxes))
+                shown = ([y] if m is methods[0] else []) + [(~fg).astype(np.float32)]
+                tiles += [draw_boxes((image * 255).astype(np.uint8), boxes) for image in shown]
             if k < args.warmup:
                 continue
             for x0, y0, x1, y1, conf in boxes:
@@ -166,10 +166,12 @@ def main() -> None:
               f"| {m.fg_all / m.pixels:.4f} |")
 
     if sheet_rows:
+        titles = ["frame + GT (green; orange = conf 0)", "vtrack KDE y, closed (white = bg)",
+                  f"vtrack KDE y < {args.threshold} (black = fg)", "MOG2, closed (black = fg)",
+                  "KNN, closed (black = fg)"]
         header = np.zeros((36, sheet_rows[0].shape[1], 3), np.uint8)
-        width = sheet_rows[0].shape[1] // 4
-        for i, title in enumerate(["frame + GT (green; orange = conf 0)", "vtrack KDE y (white = bg)",
-                                   "MOG2 after closing (black = fg)", "KNN after closing (black = fg)"]):
+        width = sheet_rows[0].shape[1] // len(titles)
+        for i, title in enumerate(titles):
             cv2.putText(header, title, (i * width + 8, 24), cv2.FONT_HERSHEY_SIMPLEX, 0.5, (255, 255, 255), 1)
         out = Path(args.out)
         out.parent.mkdir(parents=True, exist_ok=True)
