@@ -79,6 +79,18 @@ def test_threads_and_memory_layout_do_not_change_the_result(video_frames):
         np.testing.assert_array_equal(single.apply(flipped), pooled.apply(np.ascontiguousarray(flipped)))
 
 
+def test_read_only_frames_are_accepted():
+    rng = np.random.default_rng(1)
+    a, b = vtrack.KdeBackground(period=1, closing=0), vtrack.KdeBackground(period=1, closing=0)
+    for _ in range(3):
+        frame = rng.integers(0, 256, (6, 7, 3), dtype=np.uint8)
+        frozen = frame.copy()
+        frozen.flags.writeable = False
+        y = a.apply(frozen)
+        np.testing.assert_array_equal(y, b.apply(frame))
+    assert y.min() < 0.5  # random frames: not a trivial all-background comparison
+
+
 # ---- closing, freeze/resume/reset, mask --------------------------------------------------------
 
 def test_closing_is_morphological_closing_of_y(video_frames):
