@@ -9,7 +9,9 @@ turn, so drifts of the machine's load hit all methods alike). Reported: the medi
 frames per second by wall clock and by process CPU time (robust when other jobs share the cores;
 for multi-threaded rows CPU time counts all threads), megapixels per second (wall), and the
 ratio of vtrack's KDE to the method at the same thread setting (> 1: vtrack is faster).
-Single-thread rows use ``threads=1`` for vtrack and ``cv2.setNumThreads(1)`` for OpenCV.
+Single-thread rows use ``threads=1`` for vtrack and ``cv2.setNumThreads(1)`` for OpenCV (vtrack
+links the system OpenCV, a separate copy from cv2's, so cv2's setting does not reach it: its own
+``threads`` parameter decides; BGSLibrary's KDE is single-threaded code).
 The NumPy transcription is too slow for the whole video: it is fed N0 frames with K0 = 1 (a
 full stack; its per-frame work is the same for any K0) and timed on the next --numpy-frames.
 
