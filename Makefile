@@ -3,7 +3,7 @@
 # installs nothing and rebuilds only what changed.
 #   make test   system packages, .venv, build + install vtrack, then ctest and pytest
 #   make demo   the same set-up, fetch the sample video (PETS2009 S2.L1), run the main job
-#   make bench  the benchmarks in benchmarks/
+#   make bench  the benchmarks in benchmarks/ (needs the sample video too)
 
 PYTHON ?= python3
 VENV := .venv
@@ -27,10 +27,12 @@ demo: $(VENV)/.vtrack-installed $(VIDEO)
 	mkdir -p $(DEMO_OUT)
 	PATH="$(CURDIR)/$(VENV)/bin:$$PATH" vtrack info $(VIDEO)
 
-bench: $(VENV)/.vtrack-installed $(VENV)/.bench-deps
+bench: $(VENV)/.vtrack-installed $(VENV)/.bench-deps $(VIDEO)
 	$(PY) benchmarks/resampling.py
 	$(PY) benchmarks/murty.py
 	$(PY) benchmarks/glmb_standard.py
+	$(PY) benchmarks/bgs.py
+	$(PY) benchmarks/bgs_quality.py --out $(DEMO_OUT)/bgs_contact_sheet.png
 
 build: $(VENV)/.vtrack-installed
 

@@ -40,9 +40,11 @@ py::array_t<double> as_float64(const py::handle& obj, const char* name, int ndim
   return out;
 }
 
-cv::Mat mat_over(py::array& a, int cv_type) {
+// The Mat is an input that the library only reads, so a read-only array (np.frombuffer, a
+// frame with writeable=False) is accepted: const_cast instead of mutable_data(), which throws.
+cv::Mat mat_over(const py::array& a, int cv_type) {
   return cv::Mat(static_cast<int>(a.shape(0)), static_cast<int>(a.shape(1)), cv_type,
-                 a.mutable_data(), static_cast<std::size_t>(a.strides(0)));
+                 const_cast<void*>(a.data()), static_cast<std::size_t>(a.strides(0)));
 }
 
 }  // namespace

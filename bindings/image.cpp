@@ -1,11 +1,141 @@
-// Bindings of vtrack::image: rgI conversion, integral images.
+// Bindings of vtrack::image: rgI conversion, integral images, KDE background model, morphology.
+#include <string>
+#include <utility>
+
 #include "common.hpp"
 #include "vtrack/image/color.hpp"
 #include "vtrack/image/integral_image.hpp"
+#include "vtrack/image/kde_background.hpp"
+#include "vtrack/image/morphology.hpp"
 
 namespace vtrack::bindings {
+namespace {
+
+// A new H x W float32 array and a cv::Mat header over its pixels (filled in place by the C++ call).
+std::pair<py::array_t<float>, cv::Mat> new_float_image(int rows, int cols) {
+  py::array_t<float> out({rows, cols});
+  cv::Mat mat(rows, cols, CV_32FC1, out.mutable_data());
+  return {std::move(out), mat};
+}
+
+void bind_kde_background(py::module_& m) {
+  using image::KdeBackground;
+  using image::KdeBackgroundParams;
+  const KdeBackgroundParams defaults;
+  py::class_<KdeBackground>(m, "KdeBackground", R"doc(
+KDE background model on rgI chromaticity (mb-tbd paper, section 3.1, eqs. 6-10).
+
+apply(frame) turns each H x W x 3 uint8 BGR frame into y, an H x W float32 image in [0, 1]
+(near 1 = background): the mean over the sample stack of the product of three Gaussian kernels
+(eq. 10, unnormalised). The stack holds up to `n_samples` (N0) frames taken every `period` (K0)
+frames: frames 0, K0, ..., and from N0*K0 on the oldest is replaced every K0 frames; before it is
+full, y averages over the samples taken so far (frame 0 gives y = 1). `bandwidth` is
+(sigma_r, sigma_g, sigma_I), with I = (R+G+B)/765. `closing` is the side of the square used to
+morphologically close y (0 = off). `threads`: 0 = OpenCV's default, 1 = single thread; the
+result does not depend on it. Not safe to share one model between threads.
+)doc")
+      .def(py::init([](int n_samples, int period, const py::handle& bandwidth, int closing,
+                       int threads) {
+             const auto sigmas = as_vector(bandwidth, "bandwidth");
+             if (sigmas.size() != 3) {
+               throw py::value_error("bandwidth must hold 3 values (sigma_r, sigma_g, sigma_I), got " +
+                                     std::to_string(sigmas.size()));
+             }
+             KdeBackgroundParams p;
+             p.n_samples = n_samples;
+             p.period = period;
+             p.sigma_r = sigmas.at(0);
+             p.sigma_g = sigmas.at(1);
+             p.sigma_I = sigmas.at(2);
+             p.closing = closing;
+             p.threads = threads;
+             return KdeBackground(p);
+           }),
+           py::kw_only(), py::arg("n_samples") = defaults.n_samples,
+           py::arg("period") = defaults.period,
+           py::arg("bandwidth") = py::make_tuple(defaults.sigma_r, defaults.sigma_g, defaults.sigma_I),
+           py::arg("closing") = defaults.closing, py::arg("threads") = defaults.threads)
+      .def(
+          "apply",
+          [](KdeBackground& model, const py::handle& frame) {
+            py::array keep;
+            const cv::Mat bgr = bgr_frame(frame, "frame", keep);
+            auto [out, y] = new_float_image(bgr.rows, bgr.cols);
+            {
+              py::gil_scoped_release release;
+              model.apply(bgr, y);
+            }
+            return out;
+          },
+          py::arg("frame"),
+          "Consume the next H x W x 3 uint8 BGR frame; return y (H x W float32, 1 = background).")
+      .def("freeze", &KdeBackground::freeze, "Stop storing samples (the model stays fixed).")
+      .def("resume", &KdeBackground::resume, "Store samples again on the K0 schedule.")
+      .def("reset", &KdeBackground::reset,
+           "Forget all samples and the frame size; the next frame is frame 0.")
+      .def_property_readonly("learning", &KdeBackground::learning)
+      .def_property_readonly("frame_index", &KdeBackground::frame_index,
+                             "Frames consumed since construction or reset().")
+      .def_property_readonly("sample_frames", &KdeBackground::sample_frames,
+                             "Frame indices of the samples in the stack, oldest first.")
+      .def_property_readonly("n_samples", [](const KdeBackground& b) { return b.params().n_samples; })
+      .def_property_readonly("period", [](const KdeBackground& b) { return b.params().period; })
+      .def_property_readonly("bandwidth",
+                             [](const KdeBackground& b) {
+                               const auto& p = b.params();
+                               return py::make_tuple(p.sigma_r, p.sigma_g, p.sigma_I);
+                             })
+      .def_property_readonly("closing", [](const KdeBackground& b) { return b.params().closing; })
+      .def_property_readonly("threads", [](const KdeBackground& b) { return b.params().threads; })
+      .def("__repr__", [](const KdeBackground& b) {
+        const auto& p = b.params();
+        return "KdeBackground(n_samples=" + std::to_string(p.n_samples) +
+               ", period=" + std::to_string(p.period) + ", bandwidth=(" +
+               py::repr(py::float_(p.sigma_r)).cast<std::string>() + ", " +
+               py::repr(py::float_(p.sigma_g)).cast<std::string>() + ", " +
+               py::repr(py::float_(p.sigma_I)).cast<std::string>() +
+               "), closing=" + std::to_string(p.closing) + ", threads=" + std::to_string(p.threads) +
+               ")";
+      });
+
+  m.def(
+      "foreground_mask",
+      [](const py::handle& y, double threshold) {
+        py::array keep;
+        const cv::Mat image = gray_image(y, "y", keep);
+        if (image.type() != CV_32FC1) {
+          throw py::type_error("y must have dtype float32 (as KdeBackground.apply returns)");
+        }
+        py::array_t<std::uint8_t> out({image.rows, image.cols});
+        cv::Mat mask(image.rows, image.cols, CV_8UC1, out.mutable_data());
+        image::foreground_mask(image, threshold, mask);
+        return out;
+      },
+      py::arg("y"), py::kw_only(), py::arg("threshold"),
+      "Foreground mask of a background image y: uint8 H x W, 255 where y < threshold, else 0.");
+
+  m.def(
+      "close_square",
+      [](const py::handle& y, int size, int threads) {
+        py::array keep;
+        const cv::Mat image = gray_image(y, "image", keep);
+        if (image.type() != CV_32FC1) throw py::type_error("image must have dtype float32");
+        auto [out, closed] = new_float_image(image.rows, image.cols);
+        {
+          py::gil_scoped_release release;
+          image::close_square(image, closed, size, threads);
+        }
+        return out;
+      },
+      py::arg("image"), py::arg("size"), py::kw_only(), py::arg("threads") = 0,
+      "Morphological closing (max then min filter) of an H x W float32 image with a size x size "
+      "square; pixels outside the image are ignored (equals cv2.morphologyEx(MORPH_CLOSE)).");
+}
+
+}  // namespace
 
 void bind_image(py::module_& m) {
+  bind_kde_background(m);
   m.def(
       "bgr_to_rgi",
       [](const py::handle& frame) {

@@ -1,5 +1,6 @@
 // The `vtrack` command-line program: parses arguments and calls the library, nothing more.
 // Errors print `vtrack: error: ...` on stderr and exit with status 2 (usage) or 1 (failure).
+#include <chrono>
 #include <cstdio>
 #include <exception>
 #include <functional>
@@ -7,6 +8,9 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
+#include "vtrack/apps/background_subtraction.hpp"
 #include "vtrack/apps/video_source.hpp"
 #include "vtrack/core/errors.hpp"
 #include "vtrack/version.hpp"
@@ -51,10 +55,132 @@ int run_info(const std::vector<std::string>& args) {
   return 0;
 }
 
+// Strict number parsing: the whole text must be the number.
+int parse_int(const std::string& option, const std::string& text) {
+  std::size_t used = 0;
+  int value = 0;
+  try {
+    value = std::stoi(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size()) {
+    throw UsageError(option + " expects an integer, got '" + text + "'");
+  }
+  return value;
+}
+
+double parse_double(const std::string& option, const std::string& text) {
+  std::size_t used = 0;
+  double value = 0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size()) {
+    throw UsageError(option + " expects a number, got '" + text + "'");
+  }
+  return value;
+}
+
+int run_bgs(const std::vector<std::string>& args) {
+  std::string input, output;
+  vtrack::image::KdeBackgroundParams params;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a.empty() || a[0] != '-') {
+      if (!input.empty()) throw UsageError("bgs takes one VIDEO, got '" + input + "' and '" + a + "'");
+      input = a;
+      continue;
+    }
+    if (i + 1 >= args.size()) throw UsageError("option " + a + " needs a value");
+    const std::string& value = args[++i];
+    if (a == "--out") {
+      output = value;
+    } else if (a == "--samples") {
+      params.n_samples = parse_int(a, value);
+    } else if (a == "--period") {
+      params.period = parse_int(a, value);
+    } else if (a == "--closing") {
+      params.closing = parse_int(a, value);
+    } else if (a == "--threads") {
+      params.threads = parse_int(a, value);
+    } else if (a == "--bandwidth") {
+      std::vector<double> sigmas;
+      std::size_t start = 0;
+      while (true) {
+        const std::size_t comma = value.find(',', start);
+        sigmas.push_back(parse_double(a, value.substr(start, comma - start)));
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+      }
+      if (sigmas.size() != 3) {
+        throw UsageError("--bandwidth expects three numbers r,g,I, got '" + value + "'");
+      }
+      params.sigma_r = sigmas[0];
+      params.sigma_g = sigmas[1];
+      params.sigma_I = sigmas[2];
+    } else {
+      throw UsageError("unknown option '" + a + "'");
+    }
+  }
+  if (input.empty()) throw UsageError("bgs needs a VIDEO (or image folder)");
+  if (output.empty()) throw UsageError("bgs needs --out OUT (a folder, or a .avi/.mp4/.mkv file)");
+  try {
+    vtrack::image::validate(params);
+  } catch (const vtrack::InvalidArgument& e) {
+    throw UsageError(e.what());
+  }
+
+  // Progress on stderr every 25 frames: one line rewritten in place on a terminal, otherwise
+  // one line per update.
+  const bool tty = isatty(fileno(stderr)) != 0;
+  const auto start = std::chrono::steady_clock::now();
+  bool printed = false;
+  const auto progress = [&](long long done, long long total) {
+    if (done % 25 != 0 && done != total) return;
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::fprintf(stderr, "%sbgs: frame %lld", tty ? "\r" : "", done);
+    if (total > 0) std::fprintf(stderr, "/%lld", total);
+    std::fprintf(stderr, " (%.1f frames/s)%s", seconds > 0 ? done / seconds : 0.0, tty ? "" : "\n");
+    printed = true;
+  };
+  const auto finish_line = [&] {
+    if (printed && tty) std::fputc('\n', stderr);
+  };
+  vtrack::apps::BgsResult result;
+  try {
+    result = vtrack::apps::run_background_subtraction(input, output, params, progress);
+  } catch (...) {
+    finish_line();
+    throw;
+  }
+  finish_line();
+  std::cout << "wrote " << result.frames << " y images to " << output
+            << (result.video ? " (video)" : " (PNG folder)") << "\n";
+  return 0;
+}
+
 const std::vector<Command>& commands() {
   static const std::vector<Command> table = {
       {"info", "print frame count, frame size and frame rate of a video or image folder",
        "vtrack info VIDEO_OR_IMAGE_FOLDER", run_info},
+      {"bgs", "KDE background subtraction (rgI, eq. 10): write the y images (255 = background)",
+       "vtrack bgs VIDEO --out OUT [--samples N] [--period K] [--bandwidth r,g,I] [--closing K]\n"
+       "                  [--threads T]\n\n"
+       "  VIDEO            a video file or a folder of images\n"
+       "  --out OUT        a .avi/.mkv (Motion-JPEG) or .mp4 file, written under a temporary\n"
+       "                   name and renamed when complete; any other name is a folder of PNGs\n"
+       "                   000000.png, 000001.png, ... (0-based frame index); if the input is\n"
+       "                   corrupt, the images of the frames before the error stay and are valid\n"
+       "  --samples N      N0, samples in the background stack (default 10)\n"
+       "  --period K       K0, frames between samples (default 10)\n"
+       "  --bandwidth r,g,I  kernel bandwidths sigma_r,sigma_g,sigma_I (default 0.03,0.03,0.06)\n"
+       "  --closing K      side of the square closing y, 0 = off (default 3)\n"
+       "  --threads T      0 = OpenCV default, 1 = single thread (default 0)",
+       run_bgs},
   };
   return table;
 }

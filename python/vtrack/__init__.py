@@ -4,7 +4,9 @@ The filters of four papers -- KDE background subtraction with a multi-Bernoulli
 track-before-detect tracker, SIR/MCMC particle filters, a GLMB tracker with Murty's ranked
 assignments, and colour/part-based particle filters -- in C++ with this Python API.
 
-This release holds the SMC core the trackers are built from:
+This release holds the SMC core the trackers are built from and the KDE background model
+(``KdeBackground``, paper eqs. 6-10) that turns video frames into the grey image the
+track-before-detect tracker consumes:
 
 >>> import numpy as np, vtrack
 >>> rng = vtrack.Rng(seed=1)
@@ -35,13 +37,16 @@ from ._core import (
     LinearGaussianMotion,
     LinearGaussianObservation,
     OspaResult,
+    KdeBackground,
     Rng,
     VideoInfo,
     __version__,
     bgr_to_rgi,
+    close_square,
     effective_sample_size,
     gospa,
     linear_assignment,
+    foreground_mask,
     log_sum_exp,
     murty,
     normalize_log_weights,
@@ -67,14 +72,17 @@ __all__ = [
     "LinearGaussianMotion",
     "LinearGaussianObservation",
     "OspaResult",
+    "KdeBackground",
     "RESAMPLING_METHODS",
     "Rng",
     "VideoInfo",
     "__version__",
     "bgr_to_rgi",
+    "close_square",
     "effective_sample_size",
     "gospa",
     "linear_assignment",
+    "foreground_mask",
     "log_sum_exp",
     "murty",
     "normalize_log_weights",

@@ -1,0 +1,154 @@
+#include "vtrack/apps/background_subtraction.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
+
+#include "vtrack/apps/video_source.hpp"
+#include "vtrack/core/errors.hpp"
+
+namespace vtrack::apps {
+namespace fs = std::filesystem;
+namespace {
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+void rename_or_throw(const fs::path& from, const fs::path& to) {
+  std::error_code ec;
+  fs::rename(from, to, ec);
+  if (ec) {
+    throw IoError("cannot rename '" + from.string() + "' to '" + to.string() + "': " + ec.message());
+  }
+}
+
+// Where the y images go: a video written under a temporary name, or a folder of PNGs.
+class YWriter {
+ public:
+  virtual ~YWriter() = default;
+  virtual void write(const cv::Mat& y8, long long index) = 0;
+  // Called once every frame is written.
+  virtual void finish() = 0;
+  // What the caller should know about the output after a failure.
+  virtual std::string state_after_failure(long long frames_written) const = 0;
+};
+
+class FolderWriter : public YWriter {
+ public:
+  explicit FolderWriter(const fs::path& folder) : folder_(folder) {
+    std::error_code ec;
+    fs::create_directories(folder_, ec);
+    if (!fs::is_directory(folder_, ec)) {
+      throw IoError("cannot create output folder '" + folder_.string() + "'");
+    }
+  }
+  void write(const cv::Mat& y8, long long index) override {
+    char name[32];
+    std::snprintf(name, sizeof name, "%06lld", index);
+    const fs::path partial = folder_ / (std::string(name) + ".partial.png");
+    if (!cv::imwrite(partial.string(), y8)) {
+      throw IoError("cannot write frame " + std::to_string(index) + " to '" + partial.string() + "'");
+    }
+    rename_or_throw(partial, folder_ / (std::string(name) + ".png"));
+  }
+  void finish() override {}
+  std::string state_after_failure(long long frames_written) const override {
+    return "the " + std::to_string(frames_written) + " images already written to '" +
+           folder_.string() + "' (frames 0 to " + std::to_string(frames_written - 1) +
+           ") are complete";
+  }
+
+ private:
+  fs::path folder_;
+};
+
+class VideoFileWriter : public YWriter {
+ public:
+  VideoFileWriter(const fs::path& output, double fps, cv::Size size)
+      : output_(output),
+        partial_(output.parent_path() /
+                 (output.stem().string() + ".partial" + output.extension().string())) {
+    const std::string ext = lower_extension(output.string());
+    const int fourcc = ext == ".mp4" ? cv::VideoWriter::fourcc('m', 'p', '4', 'v')
+                                     : cv::VideoWriter::fourcc('M', 'J', 'P', 'G');
+    if (!writer_.open(partial_.string(), cv::CAP_FFMPEG, fourcc, fps, size, true)) {
+      throw IoError("cannot open video '" + partial_.string() + "' for writing");
+    }
+  }
+  ~VideoFileWriter() override {
+    if (!finished_) {
+      writer_.release();
+      std::error_code ec;
+      fs::remove(partial_, ec);
+    }
+  }
+  void write(const cv::Mat& y8, long long) override {
+    cv::cvtColor(y8, bgr_, cv::COLOR_GRAY2BGR);
+    writer_.write(bgr_);
+  }
+  void finish() override {
+    writer_.release();
+    rename_or_throw(partial_, output_);
+    finished_ = true;
+  }
+  std::string state_after_failure(long long) const override {
+    return "no video written ('" + output_.string() + "' left untouched)";
+  }
+
+ private:
+  fs::path output_;
+  fs::path partial_;
+  cv::VideoWriter writer_;
+  cv::Mat bgr_;
+  bool finished_ = false;
+};
+
+}  // namespace
+
+bool is_video_output(const std::string& output) {
+  const std::string ext = lower_extension(output);
+  return ext == ".avi" || ext == ".mp4" || ext == ".mkv";
+}
+
+BgsResult run_background_subtraction(const std::string& input, const std::string& output,
+                                     const image::KdeBackgroundParams& params,
+                                     const Progress& progress) {
+  image::KdeBackground model(params);  // validates params before any file is touched
+  VideoSource source(input);
+  BgsResult result;
+  result.video = is_video_output(output);
+  std::unique_ptr<YWriter> writer;
+  if (result.video) {
+    const double fps = source.fps() > 0 ? source.fps() : 25.0;
+    writer = std::make_unique<VideoFileWriter>(output, fps, cv::Size(source.width(), source.height()));
+  } else {
+    writer = std::make_unique<FolderWriter>(output);
+  }
+  cv::Mat frame, y, y8;
+  while (true) {
+    try {
+      if (!source.read(frame)) break;
+    } catch (const IoError& e) {
+      throw IoError(std::string(e.what()) + "; " + writer->state_after_failure(result.frames));
+    }
+    model.apply(frame, y);
+    y.convertTo(y8, CV_8U, 255.0);  // rounds to nearest, saturates
+    writer->write(y8, result.frames);
+    ++result.frames;
+    if (progress) progress(result.frames, source.expected_frame_count());
+  }
+  writer->finish();
+  return result;
+}
+
+}  // namespace vtrack::apps

@@ -1,0 +1,213 @@
+#include "vtrack/image/kde_background.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <string>
+
+#include "parallel_rows.hpp"
+#include "vtrack/core/errors.hpp"
+#include "vtrack/image/morphology.hpp"
+
+namespace vtrack::image {
+namespace {
+
+std::string size_string(cv::Size s) { return std::to_string(s.width) + "x" + std::to_string(s.height); }
+
+void require_bandwidth(double sigma, const char* name) {
+  if (!std::isfinite(sigma) || sigma <= 0.0) {
+    throw InvalidArgument(std::string("bandwidth ") + name + " must be finite and > 0, got " +
+                          std::to_string(sigma));
+  }
+}
+
+// exp(-e) for e >= 0, written so that GCC vectorises it: Cephes' expf (range reduction by
+// n = round(-e log2 e), degree-5 polynomial on the remainder, 2^n assembled in the exponent bits).
+// Relative error below 2e-7 on the whole range; e >= 87 returns exp(-87) ~ 1.6e-38 rather
+// than a denormal or 0, which is far below the 1e-3 accuracy of y.
+inline float exp_neg(float e) {
+  const float x = -std::min(e, 87.0f);
+  const float n = std::floor(x * 1.44269504088896341f + 0.5f);
+  float r = x - n * 0.693359375f;
+  r = r + n * 2.12194440e-4f;
+  float p = 1.9875691500e-4f;
+  p = p * r + 1.3981999507e-3f;
+  p = p * r + 8.3334519073e-3f;
+  p = p * r + 4.1665795894e-2f;
+  p = p * r + 1.6666665459e-1f;
+  p = p * r + 5.0000001201e-1f;
+  p = p * r * r + r + 1.0f;
+  const std::int32_t bits = (static_cast<std::int32_t>(n) + 127) << 23;
+  float scale;
+  std::memcpy(&scale, &bits, sizeof scale);
+  return p * scale;
+}
+
+// Chromaticity (eqs. 6, 7) of one pixel from its channel sum, as in color.hpp: black pixels are
+// the neutral grey point 1/3. The current frame and the samples go through this same function,
+// so equal pixels give exactly equal values and a kernel of exactly 1.
+inline void chromaticity(float b, float g, float r, float& cr, float& cg, float& sum) {
+  sum = b + g + r;
+  const float inv = 1.0f / std::max(sum, 1.0f);
+  // Both quotients are computed unconditionally and then selected: a select of two values,
+  // unlike a conditional division, vectorises under GCC's default -ftrapping-math.
+  const float qr = r * inv, qg = g * inv;
+  const bool black = sum == 0.0f;
+  cr = black ? 1.0f / 3.0f : qr;
+  cg = black ? 1.0f / 3.0f : qg;
+}
+
+// The exponent factors 1 / (2 sigma_d^2) of eq. (10). Intensity differences are taken on the
+// channel sum S = 765 I (an exact integer), so its factor carries 1 / 765^2.
+struct Exponents {
+  float r, g, s;
+};
+
+}  // namespace
+
+void validate(const KdeBackgroundParams& p) {
+  if (p.n_samples < 1) {
+    throw InvalidArgument("n_samples (N0) must be >= 1, got " + std::to_string(p.n_samples));
+  }
+  if (p.period < 1) {
+    throw InvalidArgument("period (K0) must be >= 1, got " + std::to_string(p.period));
+  }
+  require_bandwidth(p.sigma_r, "sigma_r");
+  require_bandwidth(p.sigma_g, "sigma_g");
+  require_bandwidth(p.sigma_I, "sigma_I");
+  if (p.closing < 0 || (p.closing > 1 && p.closing % 2 == 0)) {
+    throw InvalidArgument("closing must be 0 (off), 1 (off) or an odd size in pixels, got " +
+                          std::to_string(p.closing));
+  }
+  if (p.threads < 0) throw InvalidArgument("threads must be >= 0, got " + std::to_string(p.threads));
+}
+
+KdeBackground::KdeBackground(const KdeBackgroundParams& params) : params_(params) {
+  validate(params_);
+}
+
+void KdeBackground::reset() {
+  learning_ = true;
+  frame_index_ = 0;
+  size_ = cv::Size();
+  samples_.clear();
+  samples_.shrink_to_fit();
+  sample_frame_.clear();
+  count_ = 0;
+  next_slot_ = 0;
+}
+
+std::vector<long long> KdeBackground::sample_frames() const {
+  std::vector<long long> frames;
+  const int n = params_.n_samples;
+  const int oldest = count_ < n ? 0 : next_slot_;
+  for (int i = 0; i < count_; ++i) frames.push_back(sample_frame_[(oldest + i) % n]);
+  return frames;
+}
+
+std::size_t KdeBackground::plane_offset(int slot, int channel) const {
+  return (static_cast<std::size_t>(slot) * 3 + static_cast<std::size_t>(channel)) *
+         static_cast<std::size_t>(size_.area());
+}
+
+void KdeBackground::store_sample(const cv::Mat& bgr) {
+  const std::size_t area = static_cast<std::size_t>(size_.area());
+  if (samples_.empty()) {
+    samples_.resize(area * 3 * static_cast<std::size_t>(params_.n_samples));
+    sample_frame_.assign(static_cast<std::size_t>(params_.n_samples), -1);
+  }
+  const int slot = next_slot_;
+  std::vector<cv::Mat> planes;
+  for (int c = 0; c < 3; ++c) {
+    planes.emplace_back(size_, CV_8UC1, samples_.data() + plane_offset(slot, c));
+  }
+  cv::split(bgr, planes);  // writes into the slot's memory: the headers match in size and type
+  sample_frame_[slot] = frame_index_;
+  next_slot_ = (slot + 1) % params_.n_samples;
+  count_ = std::min(count_ + 1, params_.n_samples);
+}
+
+void KdeBackground::apply(const cv::Mat& bgr, cv::Mat& y) {
+  if (bgr.empty()) throw InvalidArgument("frame is empty");
+  if (bgr.type() != CV_8UC3) {
+    throw InvalidArgument("frame must be 8-bit with 3 channels (BGR, CV_8UC3), got depth " +
+                          std::to_string(bgr.depth()) + " with " + std::to_string(bgr.channels()) +
+                          " channels");
+  }
+  if (size_.area() == 0) {
+    size_ = bgr.size();
+  } else if (bgr.size() != size_) {
+    throw InvalidArgument("frame size changed mid-stream: frame " + std::to_string(frame_index_) +
+                          " is " + size_string(bgr.size()) + ", the model holds " +
+                          size_string(size_) + " frames (call reset() to start a new stream)");
+  }
+  // The sample schedule of section 3.1: frames 0, K0, 2 K0, ...; the ring buffer replaces the
+  // oldest sample once N0 are stored.
+  if (learning_ && frame_index_ % params_.period == 0) store_sample(bgr);
+  const bool closing = params_.closing > 1;
+  cv::Mat& raw = closing ? closing_buffer_ : y;
+  raw.create(size_, CV_32FC1);
+  evaluate(bgr, raw);
+  if (closing) close_square(raw, y, params_.closing, params_.threads, &closing_workspace_);
+  ++frame_index_;
+}
+
+// Eq. (10) for every pixel, row by row. Per row, the current frame's r, g and S are computed
+// once; then each sample adds its product of three kernels, exp(-(dr^2/2sr^2 + dg^2/2sg^2 +
+// dI^2/2sI^2)), one exp per sample. The inner loops are over contiguous floats and bytes.
+void KdeBackground::evaluate(const cv::Mat& bgr, cv::Mat& y) const {
+  const int cols = size_.width;
+  if (count_ == 0) {  // frozen before the first sample: no background model, no evidence
+    y.setTo(1.0f);
+    return;
+  }
+  const Exponents k{static_cast<float>(0.5 / (params_.sigma_r * params_.sigma_r)),
+                    static_cast<float>(0.5 / (params_.sigma_g * params_.sigma_g)),
+                    static_cast<float>(0.5 / (params_.sigma_I * params_.sigma_I * 765.0 * 765.0))};
+  const float inv_n = 1.0f / static_cast<float>(count_);
+  const int n = params_.n_samples;
+  const int oldest = count_ < n ? 0 : next_slot_;
+  detail::for_rows(size_.height, params_.threads, [&](int begin, int end) {
+    std::vector<float> buffer(static_cast<std::size_t>(cols) * 3);
+    float* cur_r = buffer.data();
+    float* cur_g = cur_r + cols;
+    float* cur_s = cur_g + cols;
+    for (int row = begin; row < end; ++row) {
+      const unsigned char* in = bgr.ptr<unsigned char>(row);
+      for (int x = 0; x < cols; ++x) {
+        chromaticity(in[3 * x], in[3 * x + 1], in[3 * x + 2], cur_r[x], cur_g[x], cur_s[x]);
+      }
+      float* acc = y.ptr<float>(row);
+      std::fill_n(acc, cols, 0.0f);
+      const std::size_t offset = static_cast<std::size_t>(row) * cols;
+      for (int i = 0; i < count_; ++i) {
+        const int slot = (oldest + i) % n;
+        const unsigned char* sb = samples_.data() + plane_offset(slot, 0) + offset;
+        const unsigned char* sg = samples_.data() + plane_offset(slot, 1) + offset;
+        const unsigned char* sr = samples_.data() + plane_offset(slot, 2) + offset;
+        for (int x = 0; x < cols; ++x) {
+          float r, g, s;
+          chromaticity(sb[x], sg[x], sr[x], r, g, s);
+          const float dr = cur_r[x] - r, dg = cur_g[x] - g, ds = cur_s[x] - s;
+          acc[x] += exp_neg(dr * dr * k.r + dg * dg * k.g + ds * ds * k.s);
+        }
+      }
+      for (int x = 0; x < cols; ++x) acc[x] *= inv_n;
+    }
+  });
+}
+
+void foreground_mask(const cv::Mat& y, double threshold, cv::Mat& mask) {
+  if (y.empty()) throw InvalidArgument("y is empty");
+  if (y.type() != CV_32FC1) {
+    throw InvalidArgument("y must be single-channel float32 (CV_32FC1), got OpenCV type " +
+                          std::to_string(y.type()));
+  }
+  if (!(threshold >= 0.0 && threshold <= 1.0)) {
+    throw InvalidArgument("threshold must be in [0, 1], got " + std::to_string(threshold));
+  }
+  cv::compare(y, threshold, mask, cv::CMP_LT);
+}
+
+}  // namespace vtrack::image

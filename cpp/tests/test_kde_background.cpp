@@ -1,0 +1,281 @@
+// KdeBackground (eq. 10), its sample schedule, freeze/resume/reset, errors; close_square against
+// cv::morphologyEx; foreground_mask.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include <opencv2/imgproc.hpp>
+
+#include "vtrack/core/errors.hpp"
+#include "vtrack/image/kde_background.hpp"
+#include "vtrack/image/morphology.hpp"
+
+using namespace vtrack::image;
+
+namespace {
+
+// A frame of one colour: B = G = 40, R = level.
+cv::Mat flat(int level, int rows = 6, int cols = 9) {
+  return cv::Mat(rows, cols, CV_8UC3, cv::Scalar(40, 40, level));
+}
+
+KdeBackgroundParams no_closing(int n_samples, int period) {
+  KdeBackgroundParams p;
+  p.n_samples = n_samples;
+  p.period = period;
+  p.closing = 0;
+  p.threads = 1;
+  return p;
+}
+
+// Eq. (10) for one pixel in double precision, written independently of the implementation.
+double kernel_product(const cv::Vec3b& a, const cv::Vec3b& b, const KdeBackgroundParams& p) {
+  auto rgi = [](const cv::Vec3b& v) {
+    const double s = double(v[0]) + v[1] + v[2];
+    return std::vector<double>{s > 0 ? v[2] / s : 1.0 / 3, s > 0 ? v[1] / s : 1.0 / 3, s / 765.0};
+  };
+  const auto x = rgi(a), m = rgi(b);
+  const double sigma[3] = {p.sigma_r, p.sigma_g, p.sigma_I};
+  double e = 0;
+  for (int d = 0; d < 3; ++d) e += (x[d] - m[d]) * (x[d] - m[d]) / (2 * sigma[d] * sigma[d]);
+  return std::exp(-e);
+}
+
+double expected_y(const cv::Mat& frame, const std::vector<cv::Mat>& stack, int row, int col,
+                  const KdeBackgroundParams& p) {
+  double sum = 0;
+  for (const auto& s : stack) sum += kernel_product(frame.at<cv::Vec3b>(row, col), s.at<cv::Vec3b>(row, col), p);
+  return sum / stack.size();
+}
+
+}  // namespace
+
+// The schedule of section 3.1, frame by frame: frames 0, K0, ..., (N0-1) K0 fill the stack; from
+// N0 K0 on, the oldest is replaced every K0 frames.
+TEST(KdeBackground, SampleScheduleFrameByFrame) {
+  const int n0 = 3, k0 = 4;
+  KdeBackground model(no_closing(n0, k0));
+  cv::Mat y;
+  for (int k = 0; k < 40; ++k) {
+    model.apply(flat(k), y);
+    std::vector<long long> expected;
+    const long long newest = k0 * (k / k0);
+    for (long long t = std::max(0LL, newest - (n0 - 1) * k0); t <= newest; t += k0) expected.push_back(t);
+    ASSERT_EQ(model.sample_frames(), expected) << "frame " << k;
+    ASSERT_EQ(model.frame_index(), k + 1);
+  }
+}
+
+// The values of y follow the same schedule: each frame's colour identifies it, so y at frame k
+// must equal eq. (10) against exactly the frames the schedule says are in the stack.
+TEST(KdeBackground, ValuesMatchEquationTenOnTheSchedule) {
+  KdeBackgroundParams p = no_closing(3, 2);
+  p.sigma_r = 0.01;  // consecutive levels differ by ~0.0025 in r: distinguishable kernels
+  KdeBackground model(p);
+  std::vector<cv::Mat> frames, stack;
+  cv::Mat y;
+  for (int k = 0; k < 12; ++k) {
+    frames.push_back(flat(60 + 4 * k));
+    if (k % 2 == 0) {
+      stack.push_back(frames.back());
+      if (stack.size() > 3) stack.erase(stack.begin());
+    }
+    model.apply(frames.back(), y);
+    ASSERT_EQ(y.type(), CV_32FC1);
+    EXPECT_NEAR(y.at<float>(2, 3), expected_y(frames.back(), stack, 2, 3, p), 1e-6) << "frame " << k;
+  }
+}
+
+TEST(KdeBackground, FirstFrameIsItsOwnBackground) {
+  KdeBackground model(no_closing(5, 3));
+  cv::Mat frame(20, 30, CV_8UC3), y;
+  cv::randu(frame, 0, 256);
+  model.apply(frame, y);
+  EXPECT_EQ(cv::countNonZero(y != 1.0f), 0);
+}
+
+TEST(KdeBackground, RandomImagesMatchEquationTen) {
+  KdeBackgroundParams p = no_closing(4, 1);
+  p.sigma_r = 0.05;
+  p.sigma_g = 0.04;
+  p.sigma_I = 0.1;
+  cv::RNG rng(7);
+  std::vector<cv::Mat> frames;
+  KdeBackground model(p);
+  cv::Mat base(17, 41, CV_8UC3), y;  // odd width: exercises the vector loop's scalar tail
+  rng.fill(base, cv::RNG::UNIFORM, 0, 256);
+  base(cv::Rect(0, 0, 3, 3)).setTo(cv::Scalar(0, 0, 0));  // black pixels: r = g = 1/3
+  for (int k = 0; k < 6; ++k) {
+    cv::Mat noise(base.size(), CV_16SC3), frame;
+    rng.fill(noise, cv::RNG::UNIFORM, -12, 13);
+    cv::add(base, noise, frame, cv::noArray(), CV_8UC3);
+    frames.push_back(frame);
+    model.apply(frame, y);
+  }
+  const std::vector<cv::Mat> stack(frames.end() - 4, frames.end());
+  double worst = 0;
+  for (int r = 0; r < y.rows; ++r) {
+    for (int c = 0; c < y.cols; ++c) {
+      worst = std::max(worst, std::abs(y.at<float>(r, c) - expected_y(frames.back(), stack, r, c, p)));
+    }
+  }
+  EXPECT_LT(worst, 1e-5);
+}
+
+TEST(KdeBackground, ResultDoesNotDependOnThreads) {
+  cv::RNG rng(3);
+  std::vector<cv::Mat> ys;
+  for (int threads : {1, 0, 3}) {
+    KdeBackgroundParams p;
+    p.period = 1;
+    p.threads = threads;
+    KdeBackground model(p);
+    rng = cv::RNG(3);
+    cv::Mat frame(123, 77, CV_8UC3), y;
+    for (int k = 0; k < 5; ++k) {
+      rng.fill(frame, cv::RNG::UNIFORM, 0, 256);
+      model.apply(frame, y);
+    }
+    ys.push_back(y.clone());
+  }
+  EXPECT_EQ(cv::norm(ys[0], ys[1], cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(ys[0], ys[2], cv::NORM_INF), 0.0);
+}
+
+TEST(KdeBackground, FreezeKeepsTheStackAndResumeFollowsTheSchedule) {
+  KdeBackground model(no_closing(3, 2));
+  cv::Mat y;
+  for (int k = 0; k < 3; ++k) model.apply(flat(50), y);  // samples 0, 2
+  model.freeze();
+  EXPECT_FALSE(model.learning());
+  for (int k = 3; k < 9; ++k) model.apply(flat(200), y);  // no sample at 4, 6, 8
+  EXPECT_EQ(model.sample_frames(), (std::vector<long long>{0, 2}));
+  // The frozen model still judges the new colour against the old background.
+  EXPECT_LT(y.at<float>(0, 0), 1e-3);
+  model.resume();
+  model.apply(flat(200), y);  // frame 9: not a sample time
+  model.apply(flat(200), y);  // frame 10: sampled
+  EXPECT_EQ(model.sample_frames(), (std::vector<long long>{0, 2, 10}));
+  EXPECT_NEAR(y.at<float>(0, 0), 1.0 / 3.0, 1e-6);  // one of three samples matches
+}
+
+TEST(KdeBackground, FrozenBeforeAnySampleGivesAllBackground) {
+  KdeBackground model(no_closing(3, 2));
+  model.freeze();
+  cv::Mat y;
+  model.apply(flat(90), y);
+  EXPECT_EQ(model.sample_count(), 0);
+  EXPECT_EQ(cv::countNonZero(y != 1.0f), 0);
+}
+
+TEST(KdeBackground, ResetForgetsSamplesAndFrameSize) {
+  KdeBackground model(no_closing(3, 1));
+  cv::Mat y;
+  model.apply(flat(50), y);
+  model.apply(flat(60), y);
+  model.freeze();
+  model.reset();
+  EXPECT_TRUE(model.learning());
+  EXPECT_EQ(model.frame_index(), 0);
+  EXPECT_TRUE(model.sample_frames().empty());
+  model.apply(flat(200, 10, 12), y);  // a new size is fine after reset
+  EXPECT_EQ(y.size(), cv::Size(12, 10));
+  EXPECT_EQ(model.sample_frames(), (std::vector<long long>{0}));
+  EXPECT_EQ(cv::countNonZero(y != 1.0f), 0);
+}
+
+TEST(KdeBackground, ClosingIsAppliedToY) {
+  // A one-pixel foreground speck disappears with a 3x3 closing, a 5x5 foreground block stays.
+  KdeBackgroundParams p = no_closing(1, 1000);
+  KdeBackground plain(p);
+  p.closing = 3;
+  KdeBackground closed(p);
+  cv::Mat bg = flat(100, 20, 20), fg = bg.clone(), y_plain, y_closed, expected;
+  fg.at<cv::Vec3b>(3, 3) = cv::Vec3b(200, 10, 10);
+  fg(cv::Rect(10, 10, 5, 5)).setTo(cv::Scalar(200, 10, 10));
+  for (const cv::Mat* f : {&bg, &fg}) {
+    plain.apply(*f, y_plain);
+    closed.apply(*f, y_closed);
+  }
+  EXPECT_LT(y_plain.at<float>(3, 3), 1e-3);
+  EXPECT_GT(y_closed.at<float>(3, 3), 0.999);
+  EXPECT_LT(y_closed.at<float>(12, 12), 1e-3);
+  cv::morphologyEx(y_plain, expected, cv::MORPH_CLOSE, cv::Mat::ones(3, 3, CV_8U));
+  EXPECT_EQ(cv::norm(y_closed, expected, cv::NORM_INF), 0.0);
+}
+
+TEST(KdeBackground, RejectsBadFrames) {
+  KdeBackground model(no_closing(2, 1));
+  cv::Mat y;
+  EXPECT_THROW(model.apply(cv::Mat(), y), vtrack::InvalidArgument);
+  EXPECT_THROW(model.apply(cv::Mat(4, 4, CV_8UC1, cv::Scalar(1)), y), vtrack::InvalidArgument);
+  EXPECT_THROW(model.apply(cv::Mat(4, 4, CV_8UC4, cv::Scalar(1)), y), vtrack::InvalidArgument);
+  EXPECT_THROW(model.apply(cv::Mat(4, 4, CV_32FC3, cv::Scalar(1)), y), vtrack::InvalidArgument);
+  model.apply(flat(10, 4, 4), y);
+  try {
+    model.apply(flat(10, 5, 4), y);
+    FAIL() << "size change accepted";
+  } catch (const vtrack::InvalidArgument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("frame 1"), std::string::npos) << what;
+    EXPECT_NE(what.find("4x5"), std::string::npos) << what;
+    EXPECT_NE(what.find("4x4"), std::string::npos) << what;
+  }
+  EXPECT_EQ(model.frame_index(), 1);  // the rejected frame did not count
+}
+
+TEST(KdeBackground, RejectsBadParameters) {
+  const auto rejects = [](auto change, const char* name) {
+    KdeBackgroundParams p;
+    change(p);
+    try {
+      KdeBackground model(p);
+      ADD_FAILURE() << name << " accepted";
+    } catch (const vtrack::InvalidArgument& e) {
+      EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    }
+  };
+  rejects([](KdeBackgroundParams& p) { p.n_samples = 0; }, "n_samples");
+  rejects([](KdeBackgroundParams& p) { p.n_samples = -3; }, "n_samples");
+  rejects([](KdeBackgroundParams& p) { p.period = 0; }, "period");
+  rejects([](KdeBackgroundParams& p) { p.sigma_r = 0; }, "sigma_r");
+  rejects([](KdeBackgroundParams& p) { p.sigma_g = -0.1; }, "sigma_g");
+  rejects([](KdeBackgroundParams& p) { p.sigma_I = NAN; }, "sigma_I");
+  rejects([](KdeBackgroundParams& p) { p.sigma_I = INFINITY; }, "sigma_I");
+  rejects([](KdeBackgroundParams& p) { p.closing = 4; }, "closing");
+  rejects([](KdeBackgroundParams& p) { p.closing = -1; }, "closing");
+  rejects([](KdeBackgroundParams& p) { p.threads = -1; }, "threads");
+}
+
+TEST(CloseSquare, EqualsOpenCvClosing) {
+  cv::RNG rng(11);
+  for (int size : {3, 5, 7}) {
+    for (cv::Size s : {cv::Size(1, 1), cv::Size(2, 9), cv::Size(37, 23), cv::Size(64, 3)}) {
+      cv::Mat src(s, CV_32FC1), ours, theirs;
+      rng.fill(src, cv::RNG::UNIFORM, 0.0f, 1.0f);
+      close_square(src, ours, size, 1);
+      cv::morphologyEx(src, theirs, cv::MORPH_CLOSE, cv::Mat::ones(size, size, CV_8U));
+      EXPECT_EQ(cv::norm(ours, theirs, cv::NORM_INF), 0.0) << size << " on " << s;
+      cv::Mat in_place = src.clone();
+      close_square(in_place, in_place, size, 0);
+      EXPECT_EQ(cv::norm(in_place, theirs, cv::NORM_INF), 0.0) << "in place " << size << " on " << s;
+    }
+  }
+  cv::Mat out;
+  EXPECT_THROW(close_square(cv::Mat(3, 3, CV_8UC1), out, 3), vtrack::InvalidArgument);
+  EXPECT_THROW(close_square(cv::Mat(3, 3, CV_32FC1), out, 2), vtrack::InvalidArgument);
+}
+
+TEST(ForegroundMask, ThresholdsBelow) {
+  cv::Mat y = (cv::Mat_<float>(1, 4) << 0.0f, 0.49f, 0.5f, 1.0f), mask;
+  foreground_mask(y, 0.5, mask);
+  EXPECT_EQ(mask.type(), CV_8UC1);
+  EXPECT_EQ(mask.at<unsigned char>(0, 0), 255);
+  EXPECT_EQ(mask.at<unsigned char>(0, 1), 255);
+  EXPECT_EQ(mask.at<unsigned char>(0, 2), 0);
+  EXPECT_EQ(mask.at<unsigned char>(0, 3), 0);
+  EXPECT_THROW(foreground_mask(y, 1.5, mask), vtrack::InvalidArgument);
+  EXPECT_THROW(foreground_mask(y, NAN, mask), vtrack::InvalidArgument);
+  EXPECT_THROW(foreground_mask(cv::Mat(2, 2, CV_8UC1), 0.5, mask), vtrack::InvalidArgument);
+}
