@@ -1,36 +1,18 @@
 #include "vtrack/apps/background_subtraction.hpp"
 
-#include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 
 #include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
-#include <opencv2/videoio.hpp>
 
 #include "vtrack/apps/video_source.hpp"
+#include "vtrack/apps/video_writer.hpp"
 #include "vtrack/core/errors.hpp"
 
 namespace vtrack::apps {
 namespace fs = std::filesystem;
 namespace {
-
-std::string lower_extension(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
-
-void rename_or_throw(const fs::path& from, const fs::path& to) {
-  std::error_code ec;
-  fs::rename(from, to, ec);
-  if (ec) {
-    throw IoError("cannot rename '" + from.string() + "' to '" + to.string() + "': " + ec.message());
-  }
-}
 
 // Where the y images go: a video written under a temporary name, or a folder of PNGs.
 class YWriter {
@@ -74,51 +56,19 @@ class FolderWriter : public YWriter {
 
 class VideoFileWriter : public YWriter {
  public:
-  VideoFileWriter(const fs::path& output, double fps, cv::Size size)
-      : output_(output),
-        partial_(output.parent_path() /
-                 (output.stem().string() + ".partial" + output.extension().string())) {
-    const std::string ext = lower_extension(output.string());
-    const int fourcc = ext == ".mp4" ? cv::VideoWriter::fourcc('m', 'p', '4', 'v')
-                                     : cv::VideoWriter::fourcc('M', 'J', 'P', 'G');
-    if (!writer_.open(partial_.string(), cv::CAP_FFMPEG, fourcc, fps, size, true)) {
-      throw IoError("cannot open video '" + partial_.string() + "' for writing");
-    }
-  }
-  ~VideoFileWriter() override {
-    if (!finished_) {
-      writer_.release();
-      std::error_code ec;
-      fs::remove(partial_, ec);
-    }
-  }
-  void write(const cv::Mat& y8, long long) override {
-    cv::cvtColor(y8, bgr_, cv::COLOR_GRAY2BGR);
-    writer_.write(bgr_);
-  }
-  void finish() override {
-    writer_.release();
-    rename_or_throw(partial_, output_);
-    finished_ = true;
-  }
+  VideoFileWriter(const std::string& output, double fps, cv::Size size)
+      : video_(output, fps, size) {}
+  void write(const cv::Mat& y8, long long) override { video_.write(y8); }
+  void finish() override { video_.commit(); }
   std::string state_after_failure(long long) const override {
-    return "no video written ('" + output_.string() + "' left untouched)";
+    return "no video written ('" + video_.path() + "' left untouched)";
   }
 
  private:
-  fs::path output_;
-  fs::path partial_;
-  cv::VideoWriter writer_;
-  cv::Mat bgr_;
-  bool finished_ = false;
+  AtomicVideoWriter video_;
 };
 
 }  // namespace
-
-bool is_video_output(const std::string& output) {
-  const std::string ext = lower_extension(output);
-  return ext == ".avi" || ext == ".mp4" || ext == ".mkv";
-}
 
 BgsResult run_background_subtraction(const std::string& input, const std::string& output,
                                      const image::KdeBackgroundParams& params,

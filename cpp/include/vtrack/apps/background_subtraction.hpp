@@ -4,6 +4,7 @@
 #include <functional>
 #include <string>
 
+#include "vtrack/apps/video_writer.hpp"  // is_video_output
 #include "vtrack/image/kde_background.hpp"
 
 namespace vtrack::apps {
@@ -15,10 +16,6 @@ struct BgsResult {
 
 // Called after every frame with (frames done, frames announced by the input or -1 if unknown).
 using Progress = std::function<void(long long done, long long total)>;
-
-// True when `output` names a video (extension .avi, .mp4 or .mkv, any case); otherwise it is a
-// folder of PNG images.
-bool is_video_output(const std::string& output);
 
 // Reads `input` (VideoSource: a video file or an image folder), applies a KdeBackground with
 // `params` and writes every y image to `output`:
