@@ -38,10 +38,11 @@ $(BUILD)/.system-deps:
 	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y --no-install-recommends $(APT_PACKAGES); }
 	mkdir -p $(BUILD) && touch $@
 
-$(VENV)/.dev-deps: requirements/dev.txt | $(BUILD)/.system-deps
+$(VENV)/.dev-deps: requirements/dev.txt requirements/eval.txt | $(BUILD)/.system-deps
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
 	$(PY) -m pip install --quiet -r requirements/dev.txt
+	$(PY) -m pip install --quiet --no-deps -r requirements/eval.txt
 	touch $@
 
 $(VENV)/.bench-deps: requirements/bench.txt $(VENV)/.dev-deps

@@ -50,6 +50,7 @@ core::Rng& rng_from(const py::handle& rng, core::Rng& storage);
 
 void bind_core(py::module_& m);
 void bind_image(py::module_& m);
+void bind_filters(py::module_& m);
 void bind_apps(py::module_& m);
 
 }  // namespace vtrack::bindings

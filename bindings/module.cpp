@@ -16,5 +16,6 @@ PYBIND11_MODULE(_core, m) {
   vtrack::apps::quiet_video_backend_logs();
   vtrack::bindings::bind_core(m);
   vtrack::bindings::bind_image(m);
+  vtrack::bindings::bind_filters(m);
   vtrack::bindings::bind_apps(m);
 }

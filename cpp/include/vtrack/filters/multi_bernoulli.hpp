@@ -38,11 +38,12 @@ struct MultiBernoulliParams {
   // P_S of eq. (22), in (0, 1].
   double survival_probability = 0.99;
   // Standard deviations of the random walk x(k+1) = x(k) + e(k) (Section 4), pixels per frame.
-  // People walk about 1-3 px/frame at 768 x 576 and 25 frames/s.
-  double sigma_x = 3.0;
-  double sigma_y = 3.0;
-  double sigma_w = 1.0;
-  double sigma_h = 1.5;
+  // PETS09-S2L1 runs at 7 frames/s, so its walkers move 3-6 px/frame at 768 x 576; a random walk
+  // follows a drift of about its own sigma, hence 5.
+  double sigma_x = 5.0;
+  double sigma_y = 5.0;
+  double sigma_w = 1.5;
+  double sigma_h = 2.0;
 
   // People size prior, used by both birth models and as the range widths and heights are clamped
   // to after prediction (so a box cannot grow to swallow a group). Defaults suit PETS09-S2L1 at
@@ -75,7 +76,7 @@ struct MultiBernoulliParams {
   // frame, so an entering person is confirmed within a frame or two.
   bool adaptive_birth = true;
   double adaptive_birth_probability = 0.05;
-  double adaptive_birth_density = 0.5;
+  double adaptive_birth_density = 0.35;
   int adaptive_birth_stride = 8;
   int adaptive_birth_max = 3;
 
