@@ -192,14 +192,9 @@ void MultiBernoulliFilter::add_quarter_births() {
 
 void MultiBernoulliFilter::add_adaptive_births() {
   if (params_.adaptive_birth_max == 0) return;
-  // Foreground 1 - y with the boxes of the existing targets (predicted means of the components
-  // with r >= cover_existence) blanked out: what remains is foreground no target explains.
-  cv::subtract(1.0, likelihood_.processed_image(), foreground_);
-  for (const auto& r : covered_) {
-    if (r.width > 0 && r.height > 0) foreground_(cv::Rect(r.x, r.y, r.width, r.height)).setTo(0.0f);
-  }
-  foreground_integral_.compute(foreground_);
-
+  // Foreground 1 - y outside the boxes of the existing targets (predicted means of the
+  // components with r >= cover_existence): foreground no target explains. From the integral
+  // image of y with those boxes counted as background, O(number of targets) per window.
   // Windows of the mean person size on a grid; windows may stick out of the image by half their
   // size (entering people) and are scored on their visible part.
   const int ww = std::max(1, int(std::lround(params_.width_mean)));
@@ -213,9 +208,9 @@ void MultiBernoulliFilter::add_adaptive_births() {
   for (int y = -wh / 2; y <= height_ - wh / 2; y += stride) {
     for (int x = -ww / 2; x <= width_ - ww / 2; x += stride) {
       const image::Rect win{x, y, ww, wh};
-      const long long area = foreground_integral_.area(win);
+      const long long area = likelihood_.integral().area(win);
       if (2 * area < static_cast<long long>(ww) * wh) continue;
-      const double density = foreground_integral_.sum(win) / double(area);
+      const double density = 1.0 - likelihood_.explained_sum(win, covered_) / double(area);
       if (density >= params_.adaptive_birth_density) candidates.push_back({density, x, y});
     }
   }

@@ -75,11 +75,11 @@ void TbdLikelihood::set_image(const cv::Mat& y) {
   inv_m_delta_b_ = 1.0 / (static_cast<double>(y.total()) * params_.delta_b);
 }
 
-double TbdLikelihood::log_likelihood(float x, float y, float w, float h,
-                                     const std::vector<image::Rect>& explained) const {
-  const image::Rect r = integral_.clip(box_to_rect(x, y, w, h));
-  const double m_x = static_cast<double>(r.width) * r.height;
-  if (m_x <= 0.0) return log_zeta_f_ - 1.0 / params_.delta_f;  // no pixel: pure background
+double TbdLikelihood::explained_sum(const image::Rect& rect,
+                                    const std::vector<image::Rect>& explained) const {
+  const image::Rect r = integral_.clip(rect);
+  const double area = static_cast<double>(r.width) * r.height;
+  if (area <= 0.0) return 0.0;
   double sum = integral_.sum(r);
   // Pixels of r inside an explained region count as 1 (eq. 13): add area - sum of the overlap.
   for (const image::Rect& e : explained) {
@@ -91,8 +91,16 @@ double TbdLikelihood::log_likelihood(float x, float y, float w, float h,
     sum += static_cast<double>(o.width) * o.height - integral_.sum(o);
   }
   // Explained regions that overlap each other would be counted twice there: cap at "all
-  // background" so ybar stays in [0, 1].
-  sum = std::min(sum, m_x);
+  // background" so the mean stays in [0, 1].
+  return std::min(sum, area);
+}
+
+double TbdLikelihood::log_likelihood(float x, float y, float w, float h,
+                                     const std::vector<image::Rect>& explained) const {
+  const image::Rect r = integral_.clip(box_to_rect(x, y, w, h));
+  const double m_x = static_cast<double>(r.width) * r.height;
+  if (m_x <= 0.0) return log_zeta_f_ - 1.0 / params_.delta_f;  // no pixel: pure background
+  const double sum = explained_sum(r, explained);
   const double ybar = sum / m_x;  // eq. (11)
   // log of eq. (20): m_x (1 - ybar) / (m delta_B) + log zeta_F - ybar / delta_F, with
   // m_x (1 - ybar) = m_x - sum.

@@ -163,8 +163,6 @@ class MultiBernoulliFilter {
   std::vector<image::Rect> explained_;
   std::vector<float> noise_;
   Eigen::VectorXd log_g_;
-  cv::Mat foreground_;
-  image::IntegralImage foreground_integral_;
 };
 
 // Area of the intersection of two boxes (x, y, w, h) over the area of the smaller one; 0 when

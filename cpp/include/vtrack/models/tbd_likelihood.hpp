@@ -87,6 +87,8 @@ class TbdLikelihood {
   // capped so that ybar <= 1).
   double log_likelihood(float x, float y, float w, float h,
                         const std::vector<image::Rect>& explained = {}) const;
+  // Sum of y over `rect` (clipped to the image) with the `explained` rectangles filled with 1.
+  double explained_sum(const image::Rect& rect, const std::vector<image::Rect>& explained) const;
   // log g_y of every column of `states` into `out` (resized to states.cols()).
   void log_likelihood(const Eigen::Ref<const BoxStates>& states, Eigen::VectorXd& out,
                       const std::vector<image::Rect>& explained = {}) const;
