@@ -11,6 +11,7 @@
 #include "vtrack/filters/multi_bernoulli.hpp"
 
 using vtrack::InvalidArgument;
+using vtrack::filters::BoxStates;
 using vtrack::filters::MultiBernoulliFilter;
 using vtrack::filters::MultiBernoulliParams;
 using vtrack::filters::Track;
@@ -105,6 +106,29 @@ TEST(MultiBernoulli, ExistenceRisesWithKnownRhoAboveOne) {
   const double r1 = 0.02 * zeta / (0.98 + 0.02 * zeta);
   ASSERT_EQ(f.components().size(), 4u);
   for (const auto& c : f.components()) EXPECT_NEAR(c.existence, r1, 1e-9);
+}
+
+TEST(MultiBernoulli, MergeKeepsTheOlderLabelAndMixesByExistence) {
+  using vtrack::filters::BernoulliComponent;
+  auto component = [](std::uint64_t label, double r, float x, int n) {
+    BernoulliComponent c{label, 0, r, BoxStates(4, n), Eigen::VectorXd::Constant(n, -std::log(n))};
+    for (int j = 0; j < n; ++j) c.particles.col(j) << x + 0.1f * j, 10.f, 20.f, 40.f;
+    return c;
+  };
+  std::vector<BernoulliComponent> cs = {component(4, 0.9, 10, 10), component(7, 0.5, 14, 20),
+                                        component(9, 0.6, 100, 5)};
+  EXPECT_NEAR(vtrack::filters::box_overlap(cs[0].mean(), cs[1].mean()), (20 - 4.5) / 20.0, 1e-5);
+  vtrack::filters::merge_overlapping(cs, 0.6, 0.999);
+  ASSERT_EQ(cs.size(), 2u);
+  EXPECT_EQ(cs[0].label, 4u);  // the older label survives
+  EXPECT_EQ(cs[1].label, 9u);  // the distant one is untouched
+  EXPECT_NEAR(cs[0].existence, 1 - 0.1 * 0.5, 1e-12);
+  ASSERT_EQ(cs[0].particles.cols(), 30);
+  const Eigen::VectorXd w = cs[0].log_weights.array().exp();
+  EXPECT_NEAR(w.sum(), 1.0, 1e-12);
+  EXPECT_NEAR(w.head(10).sum(), 0.9 / 1.4, 1e-12);  // mixture weights proportional to r
+  vtrack::filters::merge_overlapping(cs, 0.6, 0.999);  // nothing left to merge
+  EXPECT_EQ(cs.size(), 2u);
 }
 
 TEST(MultiBernoulli, BackgroundOnlyPrunesEverything) {

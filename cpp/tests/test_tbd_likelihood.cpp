@@ -96,6 +96,33 @@ TEST(TbdLikelihood, SeparableFormMatchesBruteForceOfEq19) {
   }
 }
 
+// Eq. (13): the other targets' regions filled with background. Evaluating a box with those
+// regions as `explained` equals evaluating it on an image where they are set to 1.
+TEST(TbdLikelihood, ExplainedRegionsAreBackgroundAsInEq13) {
+  vtrack::core::Rng rng(8);
+  TbdLikelihoodParams p;
+  p.closing_size = 0;
+  for (int trial = 0; trial < 30; ++trial) {
+    const cv::Mat y = random_image(40, 50, rng);
+    // Two disjoint rectangles (columns < 34 and >= 35), partly outside the image at times.
+    const std::vector<vtrack::image::Rect> explained = {
+        {int(rng.below(20)) - 5, int(rng.below(20)) - 5, int(rng.below(20)), int(rng.below(30))},
+        {35 + int(rng.below(10)), int(rng.below(30)), int(rng.below(20)), int(rng.below(20))}};
+    cv::Mat filled = y.clone();
+    for (const auto& e : explained) {
+      const cv::Rect r = cv::Rect(e.x, e.y, e.width, e.height) & cv::Rect(0, 0, 50, 40);
+      if (r.area() > 0) filled(r).setTo(1.0f);
+    }
+    TbdLikelihood lik(p), reference(p);
+    lik.set_image(y);
+    reference.set_image(filled);
+    const float bx = float(rng.uniform(-10, 45)), by = float(rng.uniform(-10, 35));
+    const float bw = float(rng.uniform(1, 40)), bh = float(rng.uniform(1, 40));
+    EXPECT_NEAR(lik.log_likelihood(bx, by, bw, bh, explained),
+                reference.log_likelihood(bx, by, bw, bh), 1e-9);
+  }
+}
+
 TEST(TbdLikelihood, BatchedEqualsSingle) {
   vtrack::core::Rng rng(6);
   const cv::Mat y = random_image(40, 50, rng);

@@ -251,24 +251,20 @@ void MultiBernoulliFilter::update() {
   }
 }
 
-void MultiBernoulliFilter::prune_and_merge() {
-  components_.erase(std::remove_if(components_.begin(), components_.end(),
-                                   [&](const BernoulliComponent& c) {
-                                     return c.existence < params_.prune_threshold;
-                                   }),
-                    components_.end());
-  // Components are kept in label order (births are appended with increasing labels), so for
-  // i < j, i is the older: j is merged into i, and i keeps its label.
+void merge_overlapping(std::vector<BernoulliComponent>& components, double min_overlap,
+                       double max_existence) {
+  // Components are in label order, so for i < j, i is the older: j is merged into i, and i
+  // keeps its label.
   std::vector<Eigen::Vector4f> means;
-  means.reserve(components_.size());
-  for (const auto& c : components_) means.push_back(c.mean());
-  std::vector<bool> merged(components_.size(), false);
-  for (std::size_t i = 0; i < components_.size(); ++i) {
+  means.reserve(components.size());
+  for (const auto& c : components) means.push_back(c.mean());
+  std::vector<bool> merged(components.size(), false);
+  for (std::size_t i = 0; i < components.size(); ++i) {
     if (merged[i]) continue;
-    for (std::size_t j = i + 1; j < components_.size(); ++j) {
-      if (merged[j] || box_overlap(means[i], means[j]) <= params_.merge_overlap) continue;
-      auto& a = components_[i];
-      const auto& b = components_[j];
+    for (std::size_t j = i + 1; j < components.size(); ++j) {
+      if (merged[j] || box_overlap(means[i], means[j]) <= min_overlap) continue;
+      auto& a = components[i];
+      const auto& b = components[j];
       // The merged Bernoulli exists if either does: r = 1 - (1 - r_a)(1 - r_b); its density is
       // the r-weighted mixture of the two particle sets.
       const Eigen::Index na = a.particles.cols();
@@ -276,23 +272,32 @@ void MultiBernoulliFilter::prune_and_merge() {
       BoxStates particles(4, na + nb);
       particles << a.particles, b.particles;
       Eigen::VectorXd lw(na + nb);
-      // (r is > 0 here unless prune_threshold is 0; the floor keeps the logs finite.)
+      // (r > 0 unless the prune threshold is 0; the floor keeps the logs finite.)
       lw << a.log_weights.array() + std::log(std::max(a.existence, 1e-300)),
           b.log_weights.array() + std::log(std::max(b.existence, 1e-300));
       lw.array() -= core::log_sum_exp(lw);
       a.particles = std::move(particles);
       a.log_weights = std::move(lw);
-      a.existence = std::min(1.0 - (1.0 - a.existence) * (1.0 - b.existence),
-                             params_.max_existence);
+      a.existence = std::min(1.0 - (1.0 - a.existence) * (1.0 - b.existence), max_existence);
       means[i] = a.mean();
       merged[j] = true;
     }
   }
   std::size_t k = 0;
-  for (std::size_t i = 0; i < components_.size(); ++i) {
-    if (!merged[i]) components_[k++] = std::move(components_[i]);
+  for (std::size_t i = 0; i < components.size(); ++i) {
+    if (!merged[i]) components[k++] = std::move(components[i]);
   }
-  components_.resize(k);
+  components.resize(k);
+}
+
+void MultiBernoulliFilter::prune_and_merge() {
+  components_.erase(std::remove_if(components_.begin(), components_.end(),
+                                   [&](const BernoulliComponent& c) {
+                                     return c.existence < params_.prune_threshold;
+                                   }),
+                    components_.end());
+  // Births are appended with increasing labels, so components_ is in label order.
+  merge_overlapping(components_, params_.merge_overlap, params_.max_existence);
 }
 
 void MultiBernoulliFilter::resample() {

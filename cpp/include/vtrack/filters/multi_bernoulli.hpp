@@ -168,6 +168,12 @@ class MultiBernoulliFilter {
 // Area of the intersection of two boxes (x, y, w, h) over the area of the smaller one; 0 when
 // either is empty.
 double box_overlap(const Eigen::Vector4f& a, const Eigen::Vector4f& b);
+// Merges every component whose estimate overlaps an older one's (box_overlap > min_overlap) into
+// the older, which keeps its label; `components` must be in label order (older first). The merged
+// existence is 1 - (1 - r_a)(1 - r_b) (capped at max_existence), the density the r-weighted
+// mixture of the two particle sets.
+void merge_overlapping(std::vector<BernoulliComponent>& components, double min_overlap,
+                       double max_existence);
 // r rho / (1 - r + r rho) of eq. (23) from log rho, computed as a logistic of the log odds so it
 // is exact for huge or tiny rho and never NaN.
 double updated_existence(double r, double log_rho);
