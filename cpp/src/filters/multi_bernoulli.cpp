@@ -107,8 +107,10 @@ std::vector<Track> MultiBernoulliFilter::step(const cv::Mat& y) {
                           " (height x width), got " + std::to_string(y.rows) + " x " +
                           std::to_string(y.cols));
   }
-  likelihood_.set_image(y);
+  likelihood_.set_image(y);  // validates y before anything changes
   predict();
+  // The existing targets, as predicted: what the births avoid and each component's update sees
+  // as explained by the others.
   covered_labels_.clear();
   covered_.clear();
   for (const auto& c : components_) {
@@ -117,8 +119,8 @@ std::vector<Track> MultiBernoulliFilter::step(const cv::Mat& y) {
     covered_labels_.push_back(c.label);
     covered_.push_back(likelihood_.integral().clip(models::box_to_rect(m[0], m[1], m[2], m[3])));
   }
-  if (params_.adaptive_birth) add_adaptive_births();  // before the quarter births: they are not
-  if (params_.quarter_birth) add_quarter_births();    // estimates that could cover anything
+  if (params_.adaptive_birth) add_adaptive_births();
+  if (params_.quarter_birth) add_quarter_births();
   update();
   prune_and_merge();
   resample();
@@ -192,11 +194,10 @@ void MultiBernoulliFilter::add_quarter_births() {
 
 void MultiBernoulliFilter::add_adaptive_births() {
   if (params_.adaptive_birth_max == 0) return;
-  // Foreground 1 - y outside the boxes of the existing targets (predicted means of the
-  // components with r >= cover_existence): foreground no target explains. From the integral
-  // image of y with those boxes counted as background, O(number of targets) per window.
-  // Windows of the mean person size on a grid; windows may stick out of the image by half their
-  // size (entering people) and are scored on their visible part.
+  // Windows of the mean person size on a grid, scored by their mean foreground 1 - y outside the
+  // existing targets' boxes (foreground no target explains), from the integral image of y with
+  // those boxes counted as background: O(number of targets) per window. Windows may stick out
+  // of the image by half their size (entering people) and are scored on their visible part.
   const int ww = std::max(1, int(std::lround(params_.width_mean)));
   const int wh = std::max(1, int(std::lround(params_.height_mean)));
   const int stride = params_.adaptive_birth_stride;
