@@ -199,10 +199,17 @@ image y in [0, 1] (near 1 = background) to step(), which returns the confirmed t
           "Process one background-subtracted image y (H x W float32 in [0, 1], H and W as "
           "image_size) and return the confirmed tracks (existence above estimate_threshold), "
           "ordered by label.")
-      .def_property_readonly("tracks", &filters::MultiBernoulliFilter::tracks,
-                             "The tracks returned by the last step.")
-      .def_property_readonly("components", &filters::MultiBernoulliFilter::components,
-                             "All Bernoulli components after the last step (for debugging).")
+      // Copies (returned by value): references into the filter would dangle after the next step.
+      .def_property_readonly(
+          "tracks",
+          [](const filters::MultiBernoulliFilter& f) { return std::vector<filters::Track>(f.tracks()); },
+          "The tracks returned by the last step.")
+      .def_property_readonly(
+          "components",
+          [](const filters::MultiBernoulliFilter& f) {
+            return std::vector<filters::BernoulliComponent>(f.components());
+          },
+          "Copies of all Bernoulli components after the last step (for debugging and plots).")
       .def_property_readonly("frame", &filters::MultiBernoulliFilter::frame,
                              "Number of steps taken.")
       .def_property_readonly(

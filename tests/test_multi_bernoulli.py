@@ -92,6 +92,12 @@ def test_one_person_one_label_and_components_exposed():
     assert c.particles.shape == (len(c.weights), 4) and c.particles.dtype == np.float32
     assert c.weights.sum() == pytest.approx(1.0)
     assert t.tracks[0].label == tracks[0].label
+    # Snapshots stay valid after further steps (they are copies, not views into the filter).
+    before = [(c.label, c.existence, c.particles.copy()) for c in comps]
+    for _ in range(3):
+        t.step(background())
+    assert [(c.label, c.existence) for c in comps] == [b[:2] for b in before]
+    assert all(np.array_equal(c.particles, b[2]) for c, b in zip(comps, before))
 
 
 def test_all_background_and_all_foreground_no_nan():
