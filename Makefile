@@ -29,6 +29,7 @@ demo: $(VENV)/.vtrack-installed $(VIDEO)
 
 bench: $(VENV)/.vtrack-installed $(VENV)/.bench-deps
 	$(PY) benchmarks/resampling.py
+	$(PY) benchmarks/multi_bernoulli.py
 
 build: $(VENV)/.vtrack-installed
 
