@@ -26,7 +26,7 @@ def test_defaults_and_params():
     assert t.params["delta_f"] == 0.2 and t.params["max_particles"] == 100
     assert t.params["quarter_birth"] is False and t.params["resampling"] == "residual"
     assert t.image_size == (160, 120) and t.frame == 0
-    assert t.step(background()) == [] and t.frame == 1
+    assert t.step(np.ones((120, 160), np.float32)) == [] and t.frame == 1
 
 
 @pytest.mark.parametrize("kwargs, exc, words", [

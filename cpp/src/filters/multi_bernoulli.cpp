@@ -53,8 +53,9 @@ void validate(const MultiBernoulliParams& p) {
   require_probability("cover_existence", p.cover_existence);
   require(p.adaptive_birth_probability > 0.0 && p.adaptive_birth_probability < 1.0,
           "adaptive_birth_probability", p.adaptive_birth_probability, "in (0, 1)");
-  require(p.adaptive_birth_density > 0.0 && p.adaptive_birth_density <= 1.0,
-          "adaptive_birth_density", p.adaptive_birth_density, "in (0, 1]");
+  require(std::isfinite(p.adaptive_birth_log_likelihood), "adaptive_birth_log_likelihood",
+          p.adaptive_birth_log_likelihood, "finite");
+  require(p.established_age >= 0, "established_age", p.established_age, ">= 0");
   require(p.adaptive_birth_stride >= 1, "adaptive_birth_stride", p.adaptive_birth_stride, ">= 1");
   require(p.adaptive_birth_max >= 0, "adaptive_birth_max", p.adaptive_birth_max, ">= 0");
   require(p.min_particles >= 1, "min_particles", p.min_particles, ">= 1");
@@ -112,11 +113,13 @@ std::vector<Track> MultiBernoulliFilter::step(const cv::Mat& y) {
   // The existing targets, as predicted: what the births avoid and each component's update sees
   // as explained by the others.
   covered_labels_.clear();
+  covered_births_.clear();
   covered_.clear();
   for (const auto& c : components_) {
     if (c.existence < params_.cover_existence) continue;
     const Eigen::Vector4f m = c.mean();
     covered_labels_.push_back(c.label);
+    covered_births_.push_back(c.birth_frame);
     covered_.push_back(likelihood_.integral().clip(models::box_to_rect(m[0], m[1], m[2], m[3])));
   }
   if (params_.adaptive_birth) add_adaptive_births();
@@ -157,7 +160,8 @@ void MultiBernoulliFilter::predict() {
 }
 
 void MultiBernoulliFilter::add_birth(double existence, double cx_lo, double cx_hi, double cy_lo,
-                                     double cy_hi) {
+                                     double cy_hi, const Eigen::Vector2d& size,
+                                     const Eigen::Vector2d& size_std) {
   const int n = params_.birth_particles;
   BernoulliComponent c{next_label_++, frame_, existence, BoxStates(4, n),
                        Eigen::VectorXd::Constant(n, -std::log(double(n)))};
@@ -167,11 +171,11 @@ void MultiBernoulliFilter::add_birth(double existence, double cx_lo, double cx_h
   rng_.fill_uniform(u.data(), u.size());
   rng_.fill_normal(z.data(), z.size());
   for (int j = 0; j < n; ++j) {
-    // Normal size prior truncated (by clamping) to the allowed range.
-    const double w = std::clamp(params_.width_mean + params_.width_std * z[2 * j],
-                                params_.width_min, params_.width_max);
-    const double h = std::clamp(params_.height_mean + params_.height_std * z[2 * j + 1],
-                                params_.height_min, params_.height_max);
+    // Normal size, truncated (by clamping) to the allowed range.
+    const double w = std::clamp(size[0] + size_std[0] * z[2 * j], params_.width_min,
+                                params_.width_max);
+    const double h = std::clamp(size[1] + size_std[1] * z[2 * j + 1], params_.height_min,
+                                params_.height_max);
     const double cx = cx_lo + (cx_hi - cx_lo) * u[2 * j];
     const double cy = cy_lo + (cy_hi - cy_lo) * u[2 * j + 1];
     c.particles.col(j) << float(cx - 0.5 * w), float(cy - 0.5 * h), float(w), float(h);
@@ -181,67 +185,77 @@ void MultiBernoulliFilter::add_birth(double existence, double cx_lo, double cx_h
 
 void MultiBernoulliFilter::add_quarter_births() {
   // Section 4: M_Gamma = 4 components, r_Gamma = 0.02 each, location uniform in one quarter of
-  // the image. "Location" is taken as the box centre, so a birth box may stick out of the image
-  // (it is clipped by the likelihood), as an entering person does.
+  // the image, size from the people size prior. "Location" is taken as the box centre, so a
+  // birth box may stick out of the image (it is clipped by the likelihood), as an entering
+  // person does.
   const double hw = 0.5 * width_;
   const double hh = 0.5 * height_;
+  const Eigen::Vector2d size(params_.width_mean, params_.height_mean);
+  const Eigen::Vector2d size_std(params_.width_std, params_.height_std);
   for (int q = 0; q < 4; ++q) {
     const double x0 = (q % 2) * hw;
     const double y0 = (q / 2) * hh;
-    add_birth(params_.birth_probability, x0, x0 + hw, y0, y0 + hh);
+    add_birth(params_.birth_probability, x0, x0 + hw, y0, y0 + hh, size, size_std);
   }
 }
 
 void MultiBernoulliFilter::add_adaptive_births() {
   if (params_.adaptive_birth_max == 0) return;
-  // Windows of the mean person size on a grid, scored by their mean foreground 1 - y outside the
-  // existing targets' boxes (foreground no target explains), from the integral image of y with
-  // those boxes counted as background: O(number of targets) per window. Windows may stick out
-  // of the image by half their size (entering people) and are scored on their visible part.
-  const int ww = std::max(1, int(std::lround(params_.width_mean)));
-  const int wh = std::max(1, int(std::lround(params_.height_mean)));
-  const int stride = params_.adaptive_birth_stride;
+  // Windows at three scales of the mean person size (see the header), scored by log g_y (eq. 20) with the
+  // existing targets' boxes as background (O(number of targets) per window). Windows may stick
+  // out of the image by half their size (entering people) and are scored on their visible part.
   struct Candidate {
-    double density;
-    int x, y;
+    double score;
+    Eigen::Vector4f box;
   };
   std::vector<Candidate> candidates;
-  for (int y = -wh / 2; y <= height_ - wh / 2; y += stride) {
-    for (int x = -ww / 2; x <= width_ - ww / 2; x += stride) {
-      const image::Rect win{x, y, ww, wh};
-      const long long area = likelihood_.integral().area(win);
-      if (2 * area < static_cast<long long>(ww) * wh) continue;
-      const double density = 1.0 - likelihood_.explained_sum(win, covered_) / double(area);
-      if (density >= params_.adaptive_birth_density) candidates.push_back({density, x, y});
+  const int stride = params_.adaptive_birth_stride;
+  for (const double scale : {0.85, 1.0, 1.3}) {
+    const int ww = std::max(1, int(std::lround(scale * params_.width_mean)));
+    const int wh = std::max(1, int(std::lround(scale * params_.height_mean)));
+    for (int y = -wh / 2; y <= height_ - wh / 2; y += stride) {
+      for (int x = -ww / 2; x <= width_ - ww / 2; x += stride) {
+        if (2 * likelihood_.integral().area({x, y, ww, wh}) < static_cast<long long>(ww) * wh) {
+          continue;
+        }
+        const double score = likelihood_.log_likelihood(float(x), float(y), float(ww),
+                                                        float(wh), covered_);
+        if (score > params_.adaptive_birth_log_likelihood) {
+          candidates.push_back({score, Eigen::Vector4f(float(x), float(y), float(ww), float(wh))});
+        }
+      }
     }
   }
-  // Greedy non-maximum suppression: the densest windows first, none overlapping another.
+  // Greedy non-maximum suppression: the best windows first, none overlapping a chosen one by
+  // more than a quarter of the smaller.
   std::stable_sort(candidates.begin(), candidates.end(),
-                   [](const Candidate& a, const Candidate& b) { return a.density > b.density; });
-  std::vector<Candidate> chosen;
+                   [](const Candidate& a, const Candidate& b) { return a.score > b.score; });
+  std::vector<Eigen::Vector4f> chosen;
   for (const auto& cand : candidates) {
     if (static_cast<int>(chosen.size()) >= params_.adaptive_birth_max) break;
-    const bool overlaps = std::any_of(chosen.begin(), chosen.end(), [&](const Candidate& o) {
-      return std::abs(o.x - cand.x) < ww && std::abs(o.y - cand.y) < wh;
+    const bool overlaps = std::any_of(chosen.begin(), chosen.end(), [&](const Eigen::Vector4f& o) {
+      return box_overlap(o, cand.box) > 0.25;
     });
-    if (!overlaps) chosen.push_back(cand);
+    if (!overlaps) chosen.push_back(cand.box);
   }
-  // Each chosen window gives a Bernoulli whose box centres are uniform within a quarter of the
-  // window size around the window centre.
-  for (const auto& c : chosen) {
-    const double cx = c.x + 0.5 * ww;
-    const double cy = c.y + 0.5 * wh;
-    add_birth(params_.adaptive_birth_probability, cx - 0.25 * ww, cx + 0.25 * ww, cy - 0.25 * wh,
-              cy + 0.25 * wh);
+  for (const auto& b : chosen) {
+    const double cx = b[0] + 0.5 * b[2];
+    const double cy = b[1] + 0.5 * b[3];
+    const Eigen::Vector2d size(b[2], b[3]);
+    add_birth(params_.adaptive_birth_probability, cx - 0.15 * b[2], cx + 0.15 * b[2],
+              cy - 0.15 * b[3], cy + 0.15 * b[3], size, 0.15 * size);
   }
 }
 
 void MultiBernoulliFilter::update() {
   for (auto& c : components_) {
-    // The other existing targets' boxes are background for this component (eq. 13).
+    // Other existing targets' boxes are background for this component (eq. 13): the older ones,
+    // and the younger ones once established (see MultiBernoulliParams::established_age).
     explained_.clear();
     for (std::size_t k = 0; k < covered_.size(); ++k) {
-      if (covered_labels_[k] != c.label) explained_.push_back(covered_[k]);
+      const bool older = covered_labels_[k] < c.label;
+      const bool established = frame_ - covered_births_[k] >= params_.established_age;
+      if (covered_labels_[k] != c.label && (older || established)) explained_.push_back(covered_[k]);
     }
     likelihood_.log_likelihood(c.particles, log_g_, explained_);
     // rho = sum_j w_j g_y(x_j) (eq. 23-24), in logs: log_sum_exp(log w + log g).

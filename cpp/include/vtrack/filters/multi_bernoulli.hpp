@@ -8,8 +8,8 @@
 //   1. predict: r <- P_S r, x <- x + e, e ~ N(0, diag(sigma^2)), weights kept (eq. 22);
 //      widths and heights are clamped to the size prior's range;
 //   2. birth: the paper's four image quarters (r_Gamma each, location uniform in the quarter, size
-//      from the people size prior) and, optionally, data-driven births on windows whose foreground
-//      1 - y is dense and not covered by any existing component's estimate;
+//      from the people size prior) and, optionally, data-driven births on the person-sized windows
+//      that best explain foreground not covered by any existing target's estimate;
 //   3. update with g_y of eq. (20), each component seeing the other existing targets' boxes as
 //      background (eq. 13; see TbdLikelihood): rho = sum_j w_j g_y(x_j), r <- r rho / (1 - r + r rho) (eq. 23),
 //      w_j <- w_j g_y(x_j) / rho (eq. 24), all in the log domain;
@@ -64,19 +64,29 @@ struct MultiBernoulliParams {
   int birth_particles = 200;
 
   // Components with r >= cover_existence are "existing targets": each component is evaluated
-  // with the other targets' estimated boxes filled with background (eq. 13 applied to all but
-  // itself, see TbdLikelihood), and data-driven births look only at foreground outside them.
+  // with other targets' estimated boxes filled with background (eq. 13, see TbdLikelihood), and
+  // data-driven births look only at foreground outside them. Which others: every older one, and
+  // younger ones once they are established_age frames old. So a fresh duplicate of a track sees
+  // the track's pixels as explained and dies, without suppressing the track in return (with a
+  // symmetric rule both would lose their evidence at once), while established neighbours
+  // partition the foreground between them and neither grows over the other.
   double cover_existence = 0.1;
+  int established_age = 3;
 
-  // Data-driven birth: windows of the mean person size on a grid of `adaptive_birth_stride`
-  // pixels whose mean foreground 1 - y, counting only pixels outside the estimates of existing
-  // targets, is at least adaptive_birth_density; at most adaptive_birth_max per frame (greedy,
-  // non-overlapping), each a Bernoulli with existence adaptive_birth_probability whose box centres
-  // are uniform within a quarter of the window size around the window centre. Uses the current
-  // frame, so an entering person is confirmed within a frame or two.
+  // Data-driven birth: person-sized windows (the prior's mean size times 0.85, 1 and 1.3, on a
+  // grid of `adaptive_birth_stride` pixels; smaller windows, e.g. 0.7, let a tall person's
+  // untracked half become a second target, stable once born because each half explains the
+  // other's pixels) are scored by log g_y of eq. (20) with the existing
+  // targets' boxes counted as background, i.e. by how well a new target there would explain
+  // foreground no target explains. The best windows scoring above adaptive_birth_log_likelihood
+  // (0: the box alone would raise an existence probability, eq. 23), at most adaptive_birth_max
+  // per frame and not overlapping each other, each give a Bernoulli with existence
+  // adaptive_birth_probability whose boxes are spread around the window (centre +-15% of its
+  // size, size N(window size, (15%)^2)). It uses the current frame, so an entering person is
+  // confirmed within a frame or two.
   bool adaptive_birth = true;
   double adaptive_birth_probability = 0.05;
-  double adaptive_birth_density = 0.35;
+  double adaptive_birth_log_likelihood = 0.0;
   int adaptive_birth_stride = 8;
   int adaptive_birth_max = 3;
 
@@ -140,8 +150,9 @@ class MultiBernoulliFilter {
   void add_quarter_births();
   void add_adaptive_births();
   // A birth component whose box centres are uniform on [cx_lo, cx_hi] x [cy_lo, cy_hi] and whose
-  // sizes follow the size prior.
-  void add_birth(double existence, double cx_lo, double cx_hi, double cy_lo, double cy_hi);
+  // sizes are N(size, diag(size_std^2)) clamped to the size range.
+  void add_birth(double existence, double cx_lo, double cx_hi, double cy_lo, double cy_hi,
+                 const Eigen::Vector2d& size, const Eigen::Vector2d& size_std);
   void update();
   void prune_and_merge();
   void resample();
@@ -157,8 +168,9 @@ class MultiBernoulliFilter {
   std::uint64_t next_label_ = 1;
   int frame_ = 0;
   // Scratch buffers reused across frames.
-  // Existing targets (r >= cover_existence) after prediction: their labels and estimated boxes.
+  // Existing targets (r >= cover_existence) after prediction: labels, birth frames and boxes.
   std::vector<std::uint64_t> covered_labels_;
+  std::vector<int> covered_births_;
   std::vector<image::Rect> covered_;
   std::vector<image::Rect> explained_;
   std::vector<float> noise_;
