@@ -218,10 +218,15 @@ void MultiBernoulliFilter::add_adaptive_births() {
         if (2 * likelihood_.integral().area({x, y, ww, wh}) < static_cast<long long>(ww) * wh) {
           continue;
         }
-        const double score = likelihood_.log_likelihood(float(x), float(y), float(ww),
-                                                        float(wh), covered_);
+        // log g_y falls as the sum of y in the box grows, and explained regions only add to it:
+        // the score without them is an upper bound, which rejects most windows in O(1).
+        const float fx = float(x), fy = float(y), fw = float(ww), fh = float(wh);
+        if (likelihood_.log_likelihood(fx, fy, fw, fh) <= params_.adaptive_birth_log_likelihood) {
+          continue;
+        }
+        const double score = likelihood_.log_likelihood(fx, fy, fw, fh, covered_);
         if (score > params_.adaptive_birth_log_likelihood) {
-          candidates.push_back({score, Eigen::Vector4f(float(x), float(y), float(ww), float(wh))});
+          candidates.push_back({score, Eigen::Vector4f(fx, fy, fw, fh)});
         }
       }
     }
