@@ -57,11 +57,25 @@ void TbdLikelihood::set_image(const cv::Mat& y) {
     throw InvalidArgument("y must be a single-channel float32 image, got OpenCV type " +
                           std::to_string(y.type()));
   }
-  cv::Point bad;  // (the upper bound of checkRange is exclusive, and compared in float)
-  if (!cv::checkRange(y, true, &bad, 0.0, 1.0 + 1e-6)) {
-    throw InvalidArgument("y must hold values in [0, 1] (no NaN), got " +
-                          str(y.at<float>(bad)) + " at row " + std::to_string(bad.y) +
-                          ", column " + std::to_string(bad.x));
+  // One branch-free pass (vectorised; NaN fails both comparisons), then a second only to name
+  // the first bad pixel. cv::checkRange costs as much as the integral image.
+  bool ok = true;
+  for (int r = 0; r < y.rows; ++r) {
+    const float* row = y.ptr<float>(r);
+    bool row_ok = true;
+    for (int c = 0; c < y.cols; ++c) row_ok &= (row[c] >= 0.0f) & (row[c] <= 1.0f);
+    ok &= row_ok;
+  }
+  if (!ok) {
+    for (int r = 0; r < y.rows; ++r) {
+      for (int c = 0; c < y.cols; ++c) {
+        const float v = y.at<float>(r, c);
+        if (!(v >= 0.0f && v <= 1.0f)) {
+          throw InvalidArgument("y must hold values in [0, 1] (no NaN), got " + str(v) +
+                                " at row " + std::to_string(r) + ", column " + std::to_string(c));
+        }
+      }
+    }
   }
   if (params_.closing_size > 1) {
     const cv::Mat element = cv::getStructuringElement(
