@@ -10,9 +10,9 @@
 //   2. birth: the paper's four image quarters (r_Gamma each, location uniform in the quarter, size
 //      from the people size prior) and, optionally, data-driven births on the person-sized windows
 //      that best explain foreground not covered by any existing target's estimate;
-//   3. update with g_y of eq. (20), each component seeing the other existing targets' boxes as
-//      background (eq. 13; see TbdLikelihood): rho = sum_j w_j g_y(x_j), r <- r rho / (1 - r + r rho) (eq. 23),
-//      w_j <- w_j g_y(x_j) / rho (eq. 24), all in the log domain;
+//   3. update with g_y of eq. (20), each component seeing other existing targets' boxes as
+//      background (eq. 13; see cover_existence): rho = sum_j w_j g_y(x_j),
+//      r <- r rho / (1 - r + r rho) (eq. 23), w_j <- w_j g_y(x_j) / rho (eq. 24), in logs;
 //   4. prune r < prune_threshold; merge components whose estimates overlap (intersection over
 //      the smaller box above merge_overlap; the older label survives);
 //   5. resample each component to L = clamp(ceil(r L_max), L_min, L_max) particles;
@@ -74,16 +74,15 @@ struct MultiBernoulliParams {
   int established_age = 3;
 
   // Data-driven birth: person-sized windows (the prior's mean size times 0.85, 1 and 1.3, on a
-  // grid of `adaptive_birth_stride` pixels; smaller windows, e.g. 0.7, let a tall person's
-  // untracked half become a second target, stable once born because each half explains the
-  // other's pixels) are scored by log g_y of eq. (20) with the existing
+  // grid of `adaptive_birth_stride` pixels) are scored by log g_y of eq. (20) with the existing
   // targets' boxes counted as background, i.e. by how well a new target there would explain
   // foreground no target explains. The best windows scoring above adaptive_birth_log_likelihood
   // (0: the box alone would raise an existence probability, eq. 23), at most adaptive_birth_max
   // per frame and not overlapping each other, each give a Bernoulli with existence
   // adaptive_birth_probability whose boxes are spread around the window (centre +-15% of its
   // size, size N(window size, (15%)^2)). It uses the current frame, so an entering person is
-  // confirmed within a frame or two.
+  // confirmed within a frame or two. (Smaller windows, e.g. 0.7, let a tall person's untracked
+  // half become a second target, which stays: each half explains the other's pixels.)
   bool adaptive_birth = true;
   double adaptive_birth_probability = 0.05;
   double adaptive_birth_log_likelihood = 0.0;
