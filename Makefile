@@ -33,6 +33,7 @@ bench: $(VENV)/.vtrack-installed $(VENV)/.bench-deps $(VIDEO)
 	$(PY) benchmarks/glmb_standard.py
 	$(PY) benchmarks/bgs.py
 	$(PY) benchmarks/bgs_quality.py --out $(DEMO_OUT)/bgs_contact_sheet.png
+	$(PY) benchmarks/multi_bernoulli.py
 
 build: $(VENV)/.vtrack-installed
 
@@ -42,10 +43,11 @@ $(BUILD)/.system-deps:
 	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y --no-install-recommends $(APT_PACKAGES); }
 	mkdir -p $(BUILD) && touch $@
 
-$(VENV)/.dev-deps: requirements/dev.txt | $(BUILD)/.system-deps
+$(VENV)/.dev-deps: requirements/dev.txt requirements/eval.txt | $(BUILD)/.system-deps
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
 	$(PY) -m pip install --quiet -r requirements/dev.txt
+	$(PY) -m pip install --quiet --no-deps -r requirements/eval.txt
 	touch $@
 
 $(VENV)/.bench-deps: requirements/bench.txt $(VENV)/.dev-deps

@@ -57,6 +57,7 @@ void bind_image(py::module_& m);
 void bind_models(py::module_& m);
 void bind_filters(py::module_& m);
 void bind_glmb(py::module_& m);
+void bind_multi_bernoulli(py::module_& m);
 void bind_apps(py::module_& m);
 
 }  // namespace vtrack::bindings

@@ -19,5 +19,6 @@ PYBIND11_MODULE(_core, m) {
   vtrack::bindings::bind_models(m);
   vtrack::bindings::bind_filters(m);
   vtrack::bindings::bind_glmb(m);
+  vtrack::bindings::bind_multi_bernoulli(m);
   vtrack::bindings::bind_apps(m);
 }

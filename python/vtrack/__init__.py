@@ -4,9 +4,14 @@ The filters of four papers -- KDE background subtraction with a multi-Bernoulli
 track-before-detect tracker, SIR/MCMC particle filters, a GLMB tracker with Murty's ranked
 assignments, and colour/part-based particle filters -- in C++ with this Python API.
 
-This release holds the SMC core the trackers are built from and the KDE background model
-(``KdeBackground``, paper eqs. 6-10) that turns video frames into the grey image the
-track-before-detect tracker consumes:
+This release holds the SMC core the trackers are built from, the KDE background model
+(``KdeBackground``, paper eqs. 6-10) that turns video frames into the grey image y, and the
+multi-Bernoulli track-before-detect tracker that consumes y (H x W float32, near 1 =
+background): ``vtrack.MultiBernoulliTracker((width, height), seed=1)`` and ``.step(y)`` per
+frame; ``vtrack.mot`` writes MOTChallenge files, ``python -m vtrack.evaluate`` scores them,
+``vtrack.synthetic`` makes scenes with exact ground truth. ``vtrack.GlmbTracker`` is the
+labelled RFS tracker (Gaussian delta-GLMB, scenarios in ``vtrack.scenarios``), built on
+``linear_assignment`` and Murty's k-best ``murty``; ``ospa``, ``ospa2`` and ``gospa`` score it.
 
 >>> import numpy as np, vtrack
 >>> rng = vtrack.Rng(seed=1)
@@ -16,80 +21,84 @@ track-before-detect tracker consumes:
 >>> vtrack.resample(w, rng, method="systematic")
 array([1, 2, 2])
 
-the GLMB multi-object tracker ``GlmbTracker`` (Gaussian delta-GLMB with Murty's ranked
-assignments) with its linear-Gaussian models and the synthetic scenarios of ``vtrack.scenarios``,
-and the data-association and evaluation tools of the trackers: ``linear_assignment``, Murty's
-k-best assignments ``murty``, and the OSPA, OSPA(2) and GOSPA metrics.
-
 NumPy arrays go in and out without copies where the layout allows; wrong dtypes raise
 ``TypeError``, wrong shapes or values ``ValueError`` (C++ errors arrive as
 ``vtrack.InvalidArgument``, a ``ValueError``, and ``vtrack.IoError``, an ``OSError``).
 """
 
 from ._core import (
+    BernoulliComponent,
+    bgr_to_rgi,
+    close_square,
+    effective_sample_size,
+    foreground_mask,
     Gaussian,
     GlmbEstimate,
     GlmbTracker,
+    gospa,
     GospaResult,
     IntegralImage,
     InvalidArgument,
     IoError,
+    KdeBackground,
+    linear_assignment,
     LinearGaussianMotion,
     LinearGaussianObservation,
-    OspaResult,
-    KdeBackground,
-    Rng,
-    VideoInfo,
-    __version__,
-    bgr_to_rgi,
-    close_square,
-    effective_sample_size,
-    gospa,
-    linear_assignment,
-    foreground_mask,
     log_sum_exp,
+    MultiBernoulliTracker,
     murty,
     normalize_log_weights,
     ospa,
     ospa2,
+    OspaResult,
     probe_video,
     resample,
+    Rng,
+    Track,
+    VideoInfo,
+    __version__,
 )
 
-from . import scenarios  # noqa: E402  (needs the compiled module above)
+# Pure-Python modules built on the compiled ones above.
+from . import mot, scenarios, synthetic  # noqa: E402
 from .boxes import track_detections  # noqa: E402
 
 RESAMPLING_METHODS = ("multinomial", "stratified", "systematic", "residual")
 
 __all__ = [
+    "BernoulliComponent",
+    "bgr_to_rgi",
+    "close_square",
+    "effective_sample_size",
+    "foreground_mask",
     "Gaussian",
     "GlmbEstimate",
     "GlmbTracker",
+    "gospa",
     "GospaResult",
     "IntegralImage",
     "InvalidArgument",
     "IoError",
+    "KdeBackground",
+    "linear_assignment",
     "LinearGaussianMotion",
     "LinearGaussianObservation",
-    "OspaResult",
-    "KdeBackground",
-    "RESAMPLING_METHODS",
-    "Rng",
-    "VideoInfo",
-    "__version__",
-    "bgr_to_rgi",
-    "close_square",
-    "effective_sample_size",
-    "gospa",
-    "linear_assignment",
-    "foreground_mask",
     "log_sum_exp",
+    "mot",
+    "MultiBernoulliTracker",
     "murty",
     "normalize_log_weights",
     "ospa",
     "ospa2",
+    "OspaResult",
     "probe_video",
     "resample",
+    "RESAMPLING_METHODS",
+    "Rng",
     "scenarios",
+    "synthetic",
+    "Track",
     "track_detections",
+    "VideoInfo",
+    "__version__",
 ]

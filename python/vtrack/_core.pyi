@@ -1,7 +1,7 @@
 """Type stubs for the compiled module vtrack._core (use the public names in `vtrack`)."""
 
 from os import PathLike
-from typing import List, Literal, Optional, Sequence, Tuple, Union, overload
+from typing import Any, Dict, List, Literal, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -197,6 +197,91 @@ class GospaResult:
 def ospa(x: ArrayLike, y: ArrayLike, c: float, p: float = 1.0) -> OspaResult: ...
 def gospa(truth: ArrayLike, estimates: ArrayLike, c: float, p: float = 1.0) -> GospaResult: ...
 def ospa2(x: ArrayLike, y: ArrayLike, c: float, p: float = 1.0) -> OspaResult: ...
+# ---- filters ------------------------------------------------------------------------------------
+
+class Track:
+    @property
+    def label(self) -> int: ...
+    @property
+    def x(self) -> float: ...
+    @property
+    def y(self) -> float: ...
+    @property
+    def w(self) -> float: ...
+    @property
+    def h(self) -> float: ...
+    @property
+    def existence(self) -> float: ...
+    @property
+    def box(self) -> Tuple[float, float, float, float]: ...
+
+class BernoulliComponent:
+    @property
+    def label(self) -> int: ...
+    @property
+    def birth_frame(self) -> int: ...
+    @property
+    def existence(self) -> float: ...
+    @property
+    def particles(self) -> npt.NDArray[np.float32]: ...
+    @property
+    def weights(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def mean(self) -> Tuple[float, float, float, float]: ...
+
+class MultiBernoulliTracker:
+    def __init__(
+        self,
+        image_size: Tuple[int, int],
+        *,
+        seed: int = 0,
+        delta_f: float = ...,
+        delta_b: float = ...,
+        closing_size: int = ...,
+        survival_probability: float = ...,
+        sigma_x: float = ...,
+        sigma_y: float = ...,
+        sigma_w: float = ...,
+        sigma_h: float = ...,
+        width_mean: float = ...,
+        width_std: float = ...,
+        height_mean: float = ...,
+        height_std: float = ...,
+        width_min: float = ...,
+        width_max: float = ...,
+        height_min: float = ...,
+        height_max: float = ...,
+        quarter_birth: bool = ...,
+        birth_probability: float = ...,
+        birth_particles: int = ...,
+        adaptive_birth: bool = ...,
+        adaptive_birth_probability: float = ...,
+        adaptive_birth_log_likelihood: float = ...,
+        cover_existence: float = ...,
+        established_age: int = ...,
+        adaptive_birth_stride: int = ...,
+        adaptive_birth_max: int = ...,
+        min_particles: int = ...,
+        max_particles: int = ...,
+        resampling: Literal["multinomial", "stratified", "systematic", "residual"] = ...,
+        prune_threshold: float = ...,
+        merge_overlap: float = ...,
+        estimate_threshold: float = ...,
+        max_existence: float = ...,
+    ) -> None: ...
+    def step(self, y: npt.NDArray[np.float32]) -> List[Track]: ...
+    @property
+    def tracks(self) -> List[Track]: ...
+    @property
+    def components(self) -> List[BernoulliComponent]: ...
+    @property
+    def frame(self) -> int: ...
+    @property
+    def image_size(self) -> Tuple[int, int]: ...
+    @property
+    def params(self) -> Dict[str, Any]: ...
+    @staticmethod
+    def default_params() -> Dict[str, Any]: ...
 
 # ---- apps ---------------------------------------------------------------------------------------
 

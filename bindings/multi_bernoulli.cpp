@@ -1,0 +1,227 @@
+// Bindings of vtrack::filters: the multi-Bernoulli track-before-detect tracker.
+#include <map>
+#include <variant>
+
+#include "common.hpp"
+#include "vtrack/core/resampling.hpp"
+#include "vtrack/filters/multi_bernoulli.hpp"
+
+namespace vtrack::bindings {
+namespace {
+
+using filters::MultiBernoulliParams;
+using Field = std::variant<double MultiBernoulliParams::*, int MultiBernoulliParams::*,
+                           bool MultiBernoulliParams::*>;
+
+// Keyword name -> field of MultiBernoulliParams (the likelihood's fields are handled apart).
+const std::map<std::string, Field>& fields() {
+  using P = MultiBernoulliParams;
+  static const std::map<std::string, Field> f = {
+      {"survival_probability", &P::survival_probability},
+      {"sigma_x", &P::sigma_x},
+      {"sigma_y", &P::sigma_y},
+      {"sigma_w", &P::sigma_w},
+      {"sigma_h", &P::sigma_h},
+      {"width_mean", &P::width_mean},
+      {"width_std", &P::width_std},
+      {"height_mean", &P::height_mean},
+      {"height_std", &P::height_std},
+      {"width_min", &P::width_min},
+      {"width_max", &P::width_max},
+      {"height_min", &P::height_min},
+      {"height_max", &P::height_max},
+      {"quarter_birth", &P::quarter_birth},
+      {"birth_probability", &P::birth_probability},
+      {"birth_particles", &P::birth_particles},
+      {"adaptive_birth", &P::adaptive_birth},
+      {"adaptive_birth_probability", &P::adaptive_birth_probability},
+      {"adaptive_birth_log_likelihood", &P::adaptive_birth_log_likelihood},
+      {"cover_existence", &P::cover_existence},
+      {"established_age", &P::established_age},
+      {"adaptive_birth_stride", &P::adaptive_birth_stride},
+      {"adaptive_birth_max", &P::adaptive_birth_max},
+      {"min_particles", &P::min_particles},
+      {"max_particles", &P::max_particles},
+      {"prune_threshold", &P::prune_threshold},
+      {"merge_overlap", &P::merge_overlap},
+      {"estimate_threshold", &P::estimate_threshold},
+      {"max_existence", &P::max_existence},
+  };
+  return f;
+}
+
+std::string type_name(const py::handle& v) {
+  return py::str(py::type::of(v).attr("__name__")).cast<std::string>();
+}
+
+// Numbers as Python and NumPy give them (int, float, np.int64, np.float32...), never bool.
+double as_double(const std::string& name, const py::handle& v) {
+  if (py::isinstance<py::bool_>(v) || py::isinstance<py::str>(v) || !PyNumber_Check(v.ptr())) {
+    throw py::type_error(name + " must be a number, got " + type_name(v));
+  }
+  return py::float_(py::reinterpret_borrow<py::object>(v)).cast<double>();
+}
+
+int as_int(const std::string& name, const py::handle& v) {
+  if (py::isinstance<py::bool_>(v) || !PyIndex_Check(v.ptr())) {
+    throw py::type_error(name + " must be an int, got " + type_name(v));
+  }
+  return py::int_(py::reinterpret_borrow<py::object>(v)).cast<int>();
+}
+
+MultiBernoulliParams params_from(const py::kwargs& kwargs) {
+  MultiBernoulliParams p;
+  for (const auto& item : kwargs) {
+    const std::string name = item.first.cast<std::string>();
+    const py::handle v = item.second;
+    if (name == "delta_f") {
+      p.likelihood.delta_f = as_double(name, v);
+    } else if (name == "delta_b") {
+      p.likelihood.delta_b = as_double(name, v);
+    } else if (name == "closing_size") {
+      p.likelihood.closing_size = as_int(name, v);
+    } else if (name == "resampling") {
+      if (!py::isinstance<py::str>(v)) throw py::type_error("resampling must be a str, got " + type_name(v));
+      p.resampling = core::parse_resampling_scheme(v.cast<std::string>());
+    } else {
+      const auto it = fields().find(name);
+      if (it == fields().end()) {
+        throw py::type_error("MultiBernoulliTracker() got an unexpected keyword argument '" + name + "'");
+      }
+      std::visit(
+          [&](auto member) {
+            using T = std::remove_reference_t<decltype(p.*member)>;
+            if constexpr (std::is_same_v<T, bool>) {
+              if (!py::isinstance<py::bool_>(v)) throw py::type_error(name + " must be a bool, got " + type_name(v));
+              p.*member = v.cast<bool>();
+            } else if constexpr (std::is_same_v<T, int>) {
+              p.*member = as_int(name, v);
+            } else {
+              p.*member = as_double(name, v);
+            }
+          },
+          it->second);
+    }
+  }
+  return p;
+}
+
+py::dict params_dict(const MultiBernoulliParams& p) {
+  py::dict d;
+  d["delta_f"] = p.likelihood.delta_f;
+  d["delta_b"] = p.likelihood.delta_b;
+  d["closing_size"] = p.likelihood.closing_size;
+  d["resampling"] = core::to_string(p.resampling);
+  for (const auto& [name, field] : fields()) {
+    std::visit([&, n = name](auto member) { d[n.c_str()] = p.*member; }, field);
+  }
+  return d;
+}
+
+std::string track_repr(const filters::Track& t) {
+  return cv::format("Track(label=%llu, x=%.1f, y=%.1f, w=%.1f, h=%.1f, existence=%.4f)",
+                    static_cast<unsigned long long>(t.label), t.x, t.y, t.w, t.h, t.existence);
+}
+
+}  // namespace
+
+void bind_multi_bernoulli(py::module_& m) {
+  py::class_<filters::Track>(m, "Track", "One confirmed track: its label, mean box and existence.")
+      .def_readonly("label", &filters::Track::label, "Identity, kept for the track's life.")
+      .def_readonly("x", &filters::Track::x, "Left edge of the box (pixels).")
+      .def_readonly("y", &filters::Track::y, "Top edge of the box (pixels).")
+      .def_readonly("w", &filters::Track::w, "Box width (pixels).")
+      .def_readonly("h", &filters::Track::h, "Box height (pixels).")
+      .def_readonly("existence", &filters::Track::existence, "Existence probability r.")
+      .def_property_readonly(
+          "box", [](const filters::Track& t) { return py::make_tuple(t.x, t.y, t.w, t.h); },
+          "(x, y, w, h).")
+      .def("__repr__", &track_repr);
+
+  py::class_<filters::BernoulliComponent>(m, "BernoulliComponent",
+                                          "One Bernoulli component of the multi-Bernoulli density.")
+      .def_readonly("label", &filters::BernoulliComponent::label)
+      .def_readonly("birth_frame", &filters::BernoulliComponent::birth_frame)
+      .def_readonly("existence", &filters::BernoulliComponent::existence)
+      .def_property_readonly(
+          "particles",
+          [](const filters::BernoulliComponent& c) {
+            // L x 4 (x, y, w, h) float32 copy.
+            const Eigen::Matrix<float, Eigen::Dynamic, 4> t = c.particles.transpose();
+            return Eigen::Matrix<float, Eigen::Dynamic, 4, Eigen::RowMajor>(t);
+          },
+          "Particles as an (L, 4) float32 array of (x, y, w, h).")
+      .def_property_readonly(
+          "weights",
+          [](const filters::BernoulliComponent& c) { return Eigen::VectorXd(c.log_weights.array().exp()); },
+          "Normalised particle weights, shape (L,).")
+      .def_property_readonly(
+          "mean",
+          [](const filters::BernoulliComponent& c) {
+            const Eigen::Vector4f mu = c.mean();
+            return py::make_tuple(mu[0], mu[1], mu[2], mu[3]);
+          },
+          "Weighted mean box (x, y, w, h).");
+
+  py::class_<filters::MultiBernoulliFilter>(m, "MultiBernoulliTracker", R"doc(
+SMC multi-Bernoulli track-before-detect tracker on background-subtracted images
+(mb-tbd paper, eqs. 20-24). Construct with image_size=(width, height), a seed and keyword
+parameters (see vtrack.MultiBernoulliTracker.default_params()); feed each frame's H x W float32
+image y in [0, 1] (near 1 = background) to step(), which returns the confirmed tracks.
+)doc")
+      .def(py::init([](const py::handle& image_size, std::uint64_t seed, const py::kwargs& kwargs) {
+             if (!py::isinstance<py::sequence>(image_size) || py::isinstance<py::str>(image_size)) {
+               throw py::type_error("image_size must be a (width, height) pair, got " +
+                                    type_name(image_size));
+             }
+             const auto size = py::reinterpret_borrow<py::sequence>(image_size);
+             if (size.size() != 2) {
+               throw py::value_error("image_size must be a (width, height) pair, got " +
+                                     std::to_string(size.size()) + " values");
+             }
+             const int w = as_int("image_size[0] (width)", size[0]);
+             const int h = as_int("image_size[1] (height)", size[1]);
+             return filters::MultiBernoulliFilter(w, h, params_from(kwargs), seed);
+           }),
+           py::arg("image_size"), py::kw_only(), py::arg("seed") = 0)
+      .def(
+          "step",
+          [](filters::MultiBernoulliFilter& f, const py::handle& y) {
+            py::array keep;
+            const cv::Mat img = gray_image(y, "y", keep);
+            if (img.type() != CV_32FC1) {
+              throw py::type_error("y must have dtype float32, got " +
+                                   py::str(keep.dtype()).cast<std::string>());
+            }
+            py::gil_scoped_release release;
+            return f.step(img);
+          },
+          py::arg("y"),
+          "Process one background-subtracted image y (H x W float32 in [0, 1], H and W as "
+          "image_size) and return the confirmed tracks (existence above estimate_threshold), "
+          "ordered by label.")
+      // Copies (returned by value): references into the filter would dangle after the next step.
+      .def_property_readonly(
+          "tracks",
+          [](const filters::MultiBernoulliFilter& f) { return std::vector<filters::Track>(f.tracks()); },
+          "The tracks returned by the last step.")
+      .def_property_readonly(
+          "components",
+          [](const filters::MultiBernoulliFilter& f) {
+            return std::vector<filters::BernoulliComponent>(f.components());
+          },
+          "Copies of all Bernoulli components after the last step (for debugging and plots).")
+      .def_property_readonly("frame", &filters::MultiBernoulliFilter::frame,
+                             "Number of steps taken.")
+      .def_property_readonly(
+          "image_size",
+          [](const filters::MultiBernoulliFilter& f) { return py::make_tuple(f.width(), f.height()); })
+      .def_property_readonly(
+          "params", [](const filters::MultiBernoulliFilter& f) { return params_dict(f.params()); },
+          "The parameters in use, as a dict of keyword arguments.")
+      .def_static(
+          "default_params", []() { return params_dict(MultiBernoulliParams{}); },
+          "The default keyword parameters, as a dict.");
+}
+
+}  // namespace vtrack::bindings

@@ -1,0 +1,192 @@
+#pragma once
+// Sequential Monte Carlo multi-Bernoulli filter for track-before-detect on a background-subtracted
+// image (mb-tbd-background-subtraction paper, Section 4, eqs. 21-24; the update is Vo,
+// Vo & Hoseinnezhad's multi-Bernoulli update for separable likelihoods, eqs. 3-5).
+//
+// Each Bernoulli component i has an existence probability r_i, a weighted particle set of box
+// states (x, y, w, h) (eq. 21) and a label it keeps for life. One step(y):
+//   1. predict: r <- P_S r, x <- x + e, e ~ N(0, diag(sigma^2)), weights kept (eq. 22);
+//      widths and heights are clamped to the size prior's range;
+//   2. birth: the paper's four image quarters (r_Gamma each, location uniform in the quarter, size
+//      from the people size prior) and, optionally, data-driven births on the person-sized windows
+//      that best explain foreground not covered by any existing target's estimate;
+//   3. update with g_y of eq. (20), each component seeing other existing targets' boxes as
+//      background (eq. 13; see cover_existence): rho = sum_j w_j g_y(x_j),
+//      r <- r rho / (1 - r + r rho) (eq. 23), w_j <- w_j g_y(x_j) / rho (eq. 24), in logs;
+//   4. prune r < prune_threshold; merge components whose estimates overlap (intersection over
+//      the smaller box above merge_overlap; the older label survives);
+//   5. resample each component to L = clamp(ceil(r L_max), L_min, L_max) particles;
+//   6. report every component with r > estimate_threshold as a track: its label, the weighted
+//      mean box and r.
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+
+#include "vtrack/core/random.hpp"
+#include "vtrack/core/resampling.hpp"
+#include "vtrack/models/tbd_likelihood.hpp"
+
+namespace vtrack::filters {
+
+using models::BoxStates;
+
+struct MultiBernoulliParams {
+  models::TbdLikelihoodParams likelihood;
+
+  // P_S of eq. (22), in (0, 1].
+  double survival_probability = 0.99;
+  // Standard deviations of the random walk x(k+1) = x(k) + e(k) (Section 4), pixels per frame.
+  // PETS09-S2L1 runs at 7 frames/s, so its walkers move 3-6 px/frame at 768 x 576; a random walk
+  // follows a drift of about its own sigma, hence 5.
+  double sigma_x = 5.0;
+  double sigma_y = 5.0;
+  double sigma_w = 1.5;
+  double sigma_h = 2.0;
+
+  // People size prior, used by both birth models and as the range widths and heights are clamped
+  // to after prediction (so a box cannot grow to swallow a group). Defaults suit PETS09-S2L1 at
+  // 768 x 576, whose people are 16-73 px wide and 53-153 px tall (MOT15 ground truth).
+  double width_mean = 40.0;
+  double width_std = 12.0;
+  double height_mean = 100.0;
+  double height_std = 25.0;
+  double width_min = 12.0;
+  double width_max = 80.0;
+  double height_min = 40.0;
+  double height_max = 170.0;
+
+  // The paper's birth (Section 4): one Bernoulli per image quarter with r_Gamma = 0.02.
+  bool quarter_birth = true;
+  double birth_probability = 0.02;
+  // Particles of each birth component.
+  int birth_particles = 200;
+
+  // Components with r >= cover_existence are "existing targets": each component is evaluated
+  // with other targets' estimated boxes filled with background (eq. 13, see TbdLikelihood), and
+  // data-driven births look only at foreground outside them. Which others: every older one, and
+  // younger ones once they are established_age frames old. So a fresh duplicate of a track sees
+  // the track's pixels as explained and dies, without suppressing the track in return (with a
+  // symmetric rule both would lose their evidence at once), while established neighbours
+  // partition the foreground between them and neither grows over the other.
+  double cover_existence = 0.1;
+  int established_age = 3;
+
+  // Data-driven birth: person-sized windows (the prior's mean size times 0.85, 1 and 1.3, on a
+  // grid of `adaptive_birth_stride` pixels) are scored by log g_y of eq. (20) with the existing
+  // targets' boxes counted as background, i.e. by how well a new target there would explain
+  // foreground no target explains. The best windows scoring above adaptive_birth_log_likelihood
+  // (0: the box alone would raise an existence probability, eq. 23), at most adaptive_birth_max
+  // per frame and not overlapping each other, each give a Bernoulli with existence
+  // adaptive_birth_probability whose boxes are spread around the window (centre +-15% of its
+  // size, size N(window size, (15%)^2)). It uses the current frame, so an entering person is
+  // confirmed within a frame or two. (Smaller windows, e.g. 0.7, let a tall person's untracked
+  // half become a second target, which stays: each half explains the other's pixels.)
+  bool adaptive_birth = true;
+  double adaptive_birth_probability = 0.05;
+  double adaptive_birth_log_likelihood = 0.0;
+  int adaptive_birth_stride = 8;
+  int adaptive_birth_max = 3;
+
+  // Particle counts of a component after resampling: clamp(ceil(r L_max), L_min, L_max).
+  int min_particles = 50;    // L_min
+  int max_particles = 400;   // L_max
+  core::ResamplingScheme resampling = core::ResamplingScheme::Systematic;
+
+  double prune_threshold = 0.01;     // Section 4: components with r below are removed
+  // "Targets with substantial overlap are merged" (Section 4): two components merge when the
+  // intersection of their estimates covers more than this fraction of the smaller one. The
+  // separable likelihood (eq. 20) scores a box half on a person nearly as well as one on it, so
+  // duplicates of one person are often offset by a third of a box; IoU (0.46 for such a pair)
+  // would keep them apart, the overlap of the smaller box (0.7) does not.
+  double merge_overlap = 0.6;
+  double estimate_threshold = 0.5;   // Section 4: tracks are the components with r above
+  // Upper bound on r after the update and merge. With r = 1 exactly, eq. (23) can never lower r
+  // again (1 - r = 0), so a departed target would live for ever when P_S = 1; the cap bounds the
+  // log odds (6.9 for 0.999), so a target that has left dies within a few frames.
+  double max_existence = 0.999;
+};
+
+// Throws InvalidArgument naming the parameter and its value when one is out of range.
+void validate(const MultiBernoulliParams& params);
+
+struct Track {
+  std::uint64_t label;
+  float x, y, w, h;  // weighted mean box (top-left, size)
+  double existence;  // r
+};
+
+struct BernoulliComponent {
+  std::uint64_t label;
+  int birth_frame;    // step index (0-based) at which the component was born
+  double existence;   // r
+  BoxStates particles;        // 4 x L
+  Eigen::VectorXd log_weights;  // normalised: log_sum_exp = 0
+  // Weighted mean box.
+  Eigen::Vector4f mean() const;
+};
+
+class MultiBernoulliFilter {
+ public:
+  MultiBernoulliFilter(int width, int height, const MultiBernoulliParams& params = {},
+                       std::uint64_t seed = 0);
+
+  // One predict-update cycle on the background-subtracted image y (H x W float32 in [0, 1]).
+  // Returns the current tracks, ordered by label.
+  std::vector<Track> step(const cv::Mat& y);
+
+  const std::vector<Track>& tracks() const { return tracks_; }
+  const std::vector<BernoulliComponent>& components() const { return components_; }
+  const MultiBernoulliParams& params() const { return params_; }
+  const models::TbdLikelihood& likelihood() const { return likelihood_; }
+  int width() const { return width_; }
+  int height() const { return height_; }
+  int frame() const { return frame_; }  // number of steps taken
+
+ private:
+  void predict();
+  void add_quarter_births();
+  void add_adaptive_births();
+  // A birth component whose box centres are uniform on [cx_lo, cx_hi] x [cy_lo, cy_hi] and whose
+  // sizes are N(size, diag(size_std^2)) clamped to the size range.
+  void add_birth(double existence, double cx_lo, double cx_hi, double cy_lo, double cy_hi,
+                 const Eigen::Vector2d& size, const Eigen::Vector2d& size_std);
+  void update();
+  void prune_and_merge();
+  void resample();
+  void clamp_sizes(BoxStates& states) const;
+
+  MultiBernoulliParams params_;
+  int width_;
+  int height_;
+  core::Rng rng_;
+  models::TbdLikelihood likelihood_;
+  std::vector<BernoulliComponent> components_;
+  std::vector<Track> tracks_;
+  std::uint64_t next_label_ = 1;
+  int frame_ = 0;
+  // Scratch buffers reused across frames.
+  // Existing targets (r >= cover_existence) after prediction: labels, birth frames and boxes.
+  std::vector<std::uint64_t> covered_labels_;
+  std::vector<int> covered_births_;
+  std::vector<image::Rect> covered_;
+  std::vector<image::Rect> explained_;
+  std::vector<float> noise_;
+  Eigen::VectorXd log_g_;
+};
+
+// Area of the intersection of two boxes (x, y, w, h) over the area of the smaller one; 0 when
+// either is empty.
+double box_overlap(const Eigen::Vector4f& a, const Eigen::Vector4f& b);
+// Merges every component whose estimate overlaps an older one's (box_overlap > min_overlap) into
+// the older, which keeps its label; `components` must be in label order (older first). The merged
+// existence is 1 - (1 - r_a)(1 - r_b) (capped at max_existence), the density the r-weighted
+// mixture of the two particle sets.
+void merge_overlapping(std::vector<BernoulliComponent>& components, double min_overlap,
+                       double max_existence);
+// r rho / (1 - r + r rho) of eq. (23) from log rho, computed as a logistic of the log odds so it
+// is exact for huge or tiny rho and never NaN.
+double updated_existence(double r, double log_rho);
+
+}  // namespace vtrack::filters

@@ -1,0 +1,107 @@
+#pragma once
+// Track-before-detect likelihood of a background-subtracted image (mb-tbd-background-subtraction
+// paper, eqs. 11-20).
+//
+// The input y is an H x W float32 image with y_i in [0, 1], near 1 for background. For a
+// rectangle T(x) holding m_x pixels of the m = H*W of the image, with mean value ybar (eq. 11),
+// the per-target factor of the separable likelihood (eq. 20) is
+//
+//   g_y(x) = exp(m_x (1 - ybar) / (m delta_B)) * zeta_F exp(-ybar / delta_F)
+//
+// and the whole-image likelihood is g(y | X) = f(y) prod_j g_y(x_j) with
+// f(y) = zeta_B exp(sum_i y_i / (m delta_B)) (eq. 20), which cancels in the multi-Bernoulli
+// update (eqs. 4, 23), so only g_y is computed. zeta_B cancels with f(y); zeta_F does not cancel:
+// it decides whether rho = <p, g_y> is above or below 1, i.e. whether a region raises or lowers
+// the existence probability. We take zeta_F as the constant that makes g_F(ybar) a probability
+// density on [0, 1] (Fig. 1(a)): zeta_F = 1 / (delta_F (1 - exp(-1 / delta_F))).
+//
+// Every evaluation is O(1): ybar comes from an integral image of y. Rectangles are clipped to the
+// image (m_x counts only the pixels inside); a rectangle with no pixel inside has no evidence for
+// a target and is scored as pure background (ybar = 1, m_x = 0), so a track that leaves the image
+// dies.
+//
+// The filter evaluates each Bernoulli component with the other targets' regions filled with
+// background (the `explained` rectangles), the construction of eq. (13) applied to all targets but
+// the one evaluated. Eq. (20) assumes targets do not overlap; without this, a box half on a
+// tracked person collects the same foreground reward as the track and survives as a duplicate.
+//
+// Before the sums, y may be morphologically closed (dilation then erosion of y, i.e. erosion then
+// dilation of the foreground 1 - y, as Section 3.2 says): this removes foreground specks smaller
+// than the structuring element, which would otherwise lower ybar_B (eq. 14) and feed births.
+#include <vector>
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+
+#include "vtrack/image/integral_image.hpp"
+
+namespace vtrack::models {
+
+// Box states are columns (x, y, w, h): top-left corner and size in pixels (float).
+using BoxStates = Eigen::Matrix<float, 4, Eigen::Dynamic>;
+
+struct TbdLikelihoodParams {
+  // delta_F of g_F(ybar) = zeta_F exp(-ybar / delta_F) (Section 3.2, eq. 20): the smaller, the
+  // more a rectangle is penalised for holding background (ybar near 1), and the tighter the
+  // boxes. With 0.1, log g_F = 2.3 - 10 ybar: g_F alone favours ybar < 0.23, and each background
+  // column added to a 40 x 100 box costs ~0.2 nats. (0.25 was tried: boxes came out ~30% too
+  // large, because missing foreground costs more than including background.)
+  double delta_f = 0.1;
+  // delta_B of g_B(ybar_B) = zeta_B exp(ybar_B / delta_B) (eqs. 15-18): the reward for covering
+  // foreground, 1 / (m delta_B) per unit of 1 - y covered, m the image's pixel count. It depends
+  // on the target's share of the image, m_x / m, not on the resolution: with 1e-3 a 40 x 100 px
+  // person in a 768 x 576 image (0.9% of it) collects 0.009 (1 - ybar) / 1e-3, i.e. +7 nats at
+  // ybar = 0.2 and +5 at ybar = 0.45 (a loose silhouette), against log g_F = 0.3 and -2.2:
+  // log g_y > 0 and a birth is confirmed in a frame or two; on background (ybar ~ 0.95) log g_y
+  // ~ -7, so a departed track dies within two frames.
+  double delta_b = 1e-3;
+  // Side of the square structuring element of the morphological closing of y (Section 3.2);
+  // 0 or 1 disables it. Must be 0 or odd.
+  int closing_size = 3;
+};
+
+// Throws InvalidArgument naming the parameter when a value is out of range.
+void validate(const TbdLikelihoodParams& params);
+
+class TbdLikelihood {
+ public:
+  explicit TbdLikelihood(const TbdLikelihoodParams& params = {});
+
+  const TbdLikelihoodParams& params() const { return params_; }
+  // log zeta_F (see above).
+  double log_zeta_f() const { return log_zeta_f_; }
+
+  // Takes a new image: H x W single-channel float32 with values in [0, 1] (NaN or values outside
+  // are an InvalidArgument naming `y`). Applies the closing and computes the integral image.
+  void set_image(const cv::Mat& y);
+  bool has_image() const { return !closed_.empty(); }
+  int width() const { return closed_.cols; }
+  int height() const { return closed_.rows; }
+  // y after the closing (what the likelihood sees).
+  const cv::Mat& processed_image() const { return closed_; }
+  const image::IntegralImage& integral() const { return integral_; }
+
+  // log g_y(x) of eq. (20) for one box (x, y, w, h), on y with the pixel rectangles `explained`
+  // filled with background (y = 1), as eq. (13) fills the regions of the other targets. The
+  // rectangles are added independently: where two overlap, a pixel counts twice (the sum is
+  // capped so that ybar <= 1).
+  double log_likelihood(float x, float y, float w, float h,
+                        const std::vector<image::Rect>& explained = {}) const;
+  // Sum of y over `rect` (clipped to the image) with the `explained` rectangles filled with 1.
+  double explained_sum(const image::Rect& rect, const std::vector<image::Rect>& explained) const;
+  // log g_y of every column of `states` into `out` (resized to states.cols()).
+  void log_likelihood(const Eigen::Ref<const BoxStates>& states, Eigen::VectorXd& out,
+                      const std::vector<image::Rect>& explained = {}) const;
+
+ private:
+  TbdLikelihoodParams params_;
+  double log_zeta_f_;
+  double inv_m_delta_b_ = 0.0;  // 1 / (m delta_B), set with the image
+  cv::Mat closed_;
+  image::IntegralImage integral_;
+};
+
+// Pixel rectangle of a float box: columns [round(x), round(x + w)), rows likewise (not clipped).
+image::Rect box_to_rect(float x, float y, float w, float h);
+
+}  // namespace vtrack::models

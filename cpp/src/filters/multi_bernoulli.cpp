@@ -1,0 +1,340 @@
+#include "vtrack/filters/multi_bernoulli.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <string>
+
+#include <opencv2/imgproc.hpp>
+
+#include "vtrack/core/errors.hpp"
+#include "vtrack/core/weights.hpp"
+
+namespace vtrack::filters {
+namespace {
+
+std::string str(double v) { return cv::format("%g", v); }
+
+void require(bool ok, const char* name, double value, const char* what) {
+  if (!ok) throw InvalidArgument(std::string(name) + " must be " + what + ", got " + str(value));
+}
+
+void require_positive(const char* name, double v) {
+  require(std::isfinite(v) && v > 0.0, name, v, "a positive finite number");
+}
+
+void require_probability(const char* name, double v) {
+  require(v >= 0.0 && v <= 1.0, name, v, "in [0, 1]");
+}
+
+}  // namespace
+
+void validate(const MultiBernoulliParams& p) {
+  models::validate(p.likelihood);
+  require(p.survival_probability > 0.0 && p.survival_probability <= 1.0, "survival_probability",
+          p.survival_probability, "in (0, 1]");
+  require_positive("sigma_x", p.sigma_x);
+  require_positive("sigma_y", p.sigma_y);
+  require_positive("sigma_w", p.sigma_w);
+  require_positive("sigma_h", p.sigma_h);
+  require_positive("width_mean", p.width_mean);
+  require_positive("height_mean", p.height_mean);
+  require(std::isfinite(p.width_std) && p.width_std >= 0.0, "width_std", p.width_std, ">= 0");
+  require(std::isfinite(p.height_std) && p.height_std >= 0.0, "height_std", p.height_std, ">= 0");
+  require(p.width_min >= 1.0, "width_min", p.width_min, ">= 1");
+  require(p.height_min >= 1.0, "height_min", p.height_min, ">= 1");
+  require(p.width_max >= p.width_min && std::isfinite(p.width_max), "width_max", p.width_max,
+          ">= width_min and finite");
+  require(p.height_max >= p.height_min && std::isfinite(p.height_max), "height_max",
+          p.height_max, ">= height_min and finite");
+  require(p.birth_probability > 0.0 && p.birth_probability < 1.0, "birth_probability",
+          p.birth_probability, "in (0, 1)");
+  require(p.birth_particles >= 1, "birth_particles", p.birth_particles, ">= 1");
+  require_probability("cover_existence", p.cover_existence);
+  require(p.adaptive_birth_probability > 0.0 && p.adaptive_birth_probability < 1.0,
+          "adaptive_birth_probability", p.adaptive_birth_probability, "in (0, 1)");
+  require(std::isfinite(p.adaptive_birth_log_likelihood), "adaptive_birth_log_likelihood",
+          p.adaptive_birth_log_likelihood, "finite");
+  require(p.established_age >= 0, "established_age", p.established_age, ">= 0");
+  require(p.adaptive_birth_stride >= 1, "adaptive_birth_stride", p.adaptive_birth_stride, ">= 1");
+  require(p.adaptive_birth_max >= 0, "adaptive_birth_max", p.adaptive_birth_max, ">= 0");
+  require(p.min_particles >= 1, "min_particles", p.min_particles, ">= 1");
+  if (p.min_particles > p.max_particles) {
+    throw InvalidArgument("min_particles (L_min = " + std::to_string(p.min_particles) +
+                          ") must not exceed max_particles (L_max = " +
+                          std::to_string(p.max_particles) + ")");
+  }
+  require(p.prune_threshold >= 0.0 && p.prune_threshold < 1.0, "prune_threshold",
+          p.prune_threshold, "in [0, 1)");
+  require(p.merge_overlap > 0.0 && p.merge_overlap <= 1.0, "merge_overlap", p.merge_overlap, "in (0, 1]");
+  require(p.estimate_threshold >= 0.0 && p.estimate_threshold < 1.0, "estimate_threshold",
+          p.estimate_threshold, "in [0, 1)");
+  require(p.max_existence > 0.0 && p.max_existence <= 1.0, "max_existence", p.max_existence,
+          "in (0, 1]");
+}
+
+Eigen::Vector4f BernoulliComponent::mean() const {
+  const Eigen::VectorXd w = log_weights.array().exp();
+  return (particles.cast<double>() * w / w.sum()).cast<float>();
+}
+
+double box_overlap(const Eigen::Vector4f& a, const Eigen::Vector4f& b) {
+  const double iw = std::min(a[0] + a[2], b[0] + b[2]) - std::max(a[0], b[0]);
+  const double ih = std::min(a[1] + a[3], b[1] + b[3]) - std::max(a[1], b[1]);
+  if (iw <= 0.0 || ih <= 0.0) return 0.0;
+  const double smaller = std::min(static_cast<double>(a[2]) * a[3], static_cast<double>(b[2]) * b[3]);
+  return smaller > 0.0 ? iw * ih / smaller : 0.0;
+}
+
+double updated_existence(double r, double log_rho) {
+  // Eq. (23): r rho / (1 - r + r rho) = 1 / (1 + exp(-(logit r + log rho))).
+  if (r <= 0.0) return 0.0;
+  if (r >= 1.0) return 1.0;
+  const double log_odds = std::log(r) - std::log1p(-r) + log_rho;
+  return 1.0 / (1.0 + std::exp(-log_odds));
+}
+
+MultiBernoulliFilter::MultiBernoulliFilter(int width, int height,
+                                           const MultiBernoulliParams& params, std::uint64_t seed)
+    : params_(params), width_(width), height_(height), rng_(seed), likelihood_(params.likelihood) {
+  if (width < 1) throw InvalidArgument("width must be >= 1, got " + std::to_string(width));
+  if (height < 1) throw InvalidArgument("height must be >= 1, got " + std::to_string(height));
+  validate(params_);
+}
+
+std::vector<Track> MultiBernoulliFilter::step(const cv::Mat& y) {
+  if (y.cols != width_ || y.rows != height_) {
+    throw InvalidArgument("y must be " + std::to_string(height_) + " x " + std::to_string(width_) +
+                          " (height x width), got " + std::to_string(y.rows) + " x " +
+                          std::to_string(y.cols));
+  }
+  likelihood_.set_image(y);  // validates y before anything changes
+  predict();
+  // The existing targets, as predicted: what the births avoid and each component's update sees
+  // as explained by the others.
+  covered_labels_.clear();
+  covered_births_.clear();
+  covered_.clear();
+  for (const auto& c : components_) {
+    if (c.existence < params_.cover_existence) continue;
+    const Eigen::Vector4f m = c.mean();
+    covered_labels_.push_back(c.label);
+    covered_births_.push_back(c.birth_frame);
+    covered_.push_back(likelihood_.integral().clip(models::box_to_rect(m[0], m[1], m[2], m[3])));
+  }
+  if (params_.adaptive_birth) add_adaptive_births();
+  if (params_.quarter_birth) add_quarter_births();
+  update();
+  prune_and_merge();
+  resample();
+
+  tracks_.clear();
+  for (const auto& c : components_) {
+    if (c.existence > params_.estimate_threshold) {
+      const Eigen::Vector4f m = c.mean();
+      tracks_.push_back({c.label, m[0], m[1], m[2], m[3], c.existence});
+    }
+  }
+  ++frame_;
+  return tracks_;
+}
+
+void MultiBernoulliFilter::clamp_sizes(BoxStates& s) const {
+  s.row(2) = s.row(2).cwiseMax(float(params_.width_min)).cwiseMin(float(params_.width_max));
+  s.row(3) = s.row(3).cwiseMax(float(params_.height_min)).cwiseMin(float(params_.height_max));
+}
+
+void MultiBernoulliFilter::predict() {
+  // Eq. (22): r <- P_S r; x <- x + e with e ~ N(0, diag(sigma^2)); weights unchanged.
+  const Eigen::Array4f sigma(float(params_.sigma_x), float(params_.sigma_y),
+                             float(params_.sigma_w), float(params_.sigma_h));
+  for (auto& c : components_) {
+    c.existence *= params_.survival_probability;
+    const auto n = static_cast<std::size_t>(c.particles.cols());
+    noise_.resize(4 * n);
+    rng_.fill_normal(noise_.data(), noise_.size());
+    const Eigen::Map<const BoxStates> e(noise_.data(), 4, c.particles.cols());
+    c.particles += (e.array().colwise() * sigma).matrix();
+    clamp_sizes(c.particles);
+  }
+}
+
+void MultiBernoulliFilter::add_birth(double existence, double cx_lo, double cx_hi, double cy_lo,
+                                     double cy_hi, const Eigen::Vector2d& size,
+                                     const Eigen::Vector2d& size_std) {
+  const int n = params_.birth_particles;
+  BernoulliComponent c{next_label_++, frame_, existence, BoxStates(4, n),
+                       Eigen::VectorXd::Constant(n, -std::log(double(n)))};
+  // 2n uniforms for the centres, 2n normals for the sizes, drawn in batches.
+  std::vector<double> u(2 * static_cast<std::size_t>(n));
+  std::vector<double> z(2 * static_cast<std::size_t>(n));
+  rng_.fill_uniform(u.data(), u.size());
+  rng_.fill_normal(z.data(), z.size());
+  for (int j = 0; j < n; ++j) {
+    // Normal size, truncated (by clamping) to the allowed range.
+    const double w = std::clamp(size[0] + size_std[0] * z[2 * j], params_.width_min,
+                                params_.width_max);
+    const double h = std::clamp(size[1] + size_std[1] * z[2 * j + 1], params_.height_min,
+                                params_.height_max);
+    const double cx = cx_lo + (cx_hi - cx_lo) * u[2 * j];
+    const double cy = cy_lo + (cy_hi - cy_lo) * u[2 * j + 1];
+    c.particles.col(j) << float(cx - 0.5 * w), float(cy - 0.5 * h), float(w), float(h);
+  }
+  components_.push_back(std::move(c));
+}
+
+void MultiBernoulliFilter::add_quarter_births() {
+  // Section 4: M_Gamma = 4 components, r_Gamma = 0.02 each, location uniform in one quarter of
+  // the image, size from the people size prior. "Location" is taken as the box centre, so a
+  // birth box may stick out of the image (it is clipped by the likelihood), as an entering
+  // person does.
+  const double hw = 0.5 * width_;
+  const double hh = 0.5 * height_;
+  const Eigen::Vector2d size(params_.width_mean, params_.height_mean);
+  const Eigen::Vector2d size_std(params_.width_std, params_.height_std);
+  for (int q = 0; q < 4; ++q) {
+    const double x0 = (q % 2) * hw;
+    const double y0 = (q / 2) * hh;
+    add_birth(params_.birth_probability, x0, x0 + hw, y0, y0 + hh, size, size_std);
+  }
+}
+
+void MultiBernoulliFilter::add_adaptive_births() {
+  if (params_.adaptive_birth_max == 0) return;
+  // Windows at three scales of the mean person size (see the header), scored by log g_y (eq. 20) with the
+  // existing targets' boxes as background (O(number of targets) per window). Windows may stick
+  // out of the image by half their size (entering people) and are scored on their visible part.
+  struct Candidate {
+    double score;
+    Eigen::Vector4f box;
+  };
+  std::vector<Candidate> candidates;
+  const int stride = params_.adaptive_birth_stride;
+  for (const double scale : {0.85, 1.0, 1.3}) {
+    const int ww = std::max(1, int(std::lround(scale * params_.width_mean)));
+    const int wh = std::max(1, int(std::lround(scale * params_.height_mean)));
+    for (int y = -wh / 2; y <= height_ - wh / 2; y += stride) {
+      for (int x = -ww / 2; x <= width_ - ww / 2; x += stride) {
+        if (2 * likelihood_.integral().area({x, y, ww, wh}) < static_cast<long long>(ww) * wh) {
+          continue;
+        }
+        // log g_y falls as the sum of y in the box grows, and explained regions only add to it:
+        // the score without them is an upper bound, which rejects most windows in O(1).
+        const float fx = float(x), fy = float(y), fw = float(ww), fh = float(wh);
+        if (likelihood_.log_likelihood(fx, fy, fw, fh) <= params_.adaptive_birth_log_likelihood) {
+          continue;
+        }
+        const double score = likelihood_.log_likelihood(fx, fy, fw, fh, covered_);
+        if (score > params_.adaptive_birth_log_likelihood) {
+          candidates.push_back({score, Eigen::Vector4f(fx, fy, fw, fh)});
+        }
+      }
+    }
+  }
+  // Greedy non-maximum suppression: the best windows first, none overlapping a chosen one by
+  // more than a quarter of the smaller.
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const Candidate& a, const Candidate& b) { return a.score > b.score; });
+  std::vector<Eigen::Vector4f> chosen;
+  for (const auto& cand : candidates) {
+    if (static_cast<int>(chosen.size()) >= params_.adaptive_birth_max) break;
+    const bool overlaps = std::any_of(chosen.begin(), chosen.end(), [&](const Eigen::Vector4f& o) {
+      return box_overlap(o, cand.box) > 0.25;
+    });
+    if (!overlaps) chosen.push_back(cand.box);
+  }
+  for (const auto& b : chosen) {
+    const double cx = b[0] + 0.5 * b[2];
+    const double cy = b[1] + 0.5 * b[3];
+    const Eigen::Vector2d size(b[2], b[3]);
+    add_birth(params_.adaptive_birth_probability, cx - 0.15 * b[2], cx + 0.15 * b[2],
+              cy - 0.15 * b[3], cy + 0.15 * b[3], size, 0.15 * size);
+  }
+}
+
+void MultiBernoulliFilter::update() {
+  for (auto& c : components_) {
+    // Other existing targets' boxes are background for this component (eq. 13): the older ones,
+    // and the younger ones once established (see MultiBernoulliParams::established_age).
+    explained_.clear();
+    for (std::size_t k = 0; k < covered_.size(); ++k) {
+      const bool older = covered_labels_[k] < c.label;
+      const bool established = frame_ - covered_births_[k] >= params_.established_age;
+      if (covered_labels_[k] != c.label && (older || established)) explained_.push_back(covered_[k]);
+    }
+    likelihood_.log_likelihood(c.particles, log_g_, explained_);
+    // rho = sum_j w_j g_y(x_j) (eq. 23-24), in logs: log_sum_exp(log w + log g).
+    c.log_weights += log_g_;
+    const double log_rho = core::log_sum_exp(c.log_weights);
+    c.log_weights.array() -= log_rho;  // eq. (24)
+    c.existence = std::min(updated_existence(c.existence, log_rho), params_.max_existence);
+  }
+}
+
+void merge_overlapping(std::vector<BernoulliComponent>& components, double min_overlap,
+                       double max_existence) {
+  // Components are in label order, so for i < j, i is the older: j is merged into i, and i
+  // keeps its label.
+  std::vector<Eigen::Vector4f> means;
+  means.reserve(components.size());
+  for (const auto& c : components) means.push_back(c.mean());
+  std::vector<bool> merged(components.size(), false);
+  for (std::size_t i = 0; i < components.size(); ++i) {
+    if (merged[i]) continue;
+    for (std::size_t j = i + 1; j < components.size(); ++j) {
+      if (merged[j] || box_overlap(means[i], means[j]) <= min_overlap) continue;
+      auto& a = components[i];
+      const auto& b = components[j];
+      // The merged Bernoulli exists if either does: r = 1 - (1 - r_a)(1 - r_b); its density is
+      // the r-weighted mixture of the two particle sets.
+      const Eigen::Index na = a.particles.cols();
+      const Eigen::Index nb = b.particles.cols();
+      BoxStates particles(4, na + nb);
+      particles << a.particles, b.particles;
+      Eigen::VectorXd lw(na + nb);
+      // (r > 0 unless the prune threshold is 0; the floor keeps the logs finite.)
+      lw << a.log_weights.array() + std::log(std::max(a.existence, 1e-300)),
+          b.log_weights.array() + std::log(std::max(b.existence, 1e-300));
+      lw.array() -= core::log_sum_exp(lw);
+      a.particles = std::move(particles);
+      a.log_weights = std::move(lw);
+      a.existence = std::min(1.0 - (1.0 - a.existence) * (1.0 - b.existence), max_existence);
+      means[i] = a.mean();
+      merged[j] = true;
+    }
+  }
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < components.size(); ++i) {
+    if (!merged[i]) components[k++] = std::move(components[i]);
+  }
+  components.resize(k);
+}
+
+void MultiBernoulliFilter::prune_and_merge() {
+  components_.erase(std::remove_if(components_.begin(), components_.end(),
+                                   [&](const BernoulliComponent& c) {
+                                     return c.existence < params_.prune_threshold;
+                                   }),
+                    components_.end());
+  // Births are appended with increasing labels, so components_ is in label order.
+  merge_overlapping(components_, params_.merge_overlap, params_.max_existence);
+}
+
+void MultiBernoulliFilter::resample() {
+  // Particle count proportional to r, clamped to [L_min, L_max] (Section 4, as in the MeMBer
+  // filter); weights become uniform.
+  for (auto& c : components_) {
+    const auto count = static_cast<std::size_t>(std::clamp<double>(
+        std::ceil(c.existence * params_.max_particles), params_.min_particles,
+        params_.max_particles));
+    const Eigen::VectorXd w = c.log_weights.array().exp();
+    const std::vector<std::int64_t> idx = core::resample(params_.resampling, w, count, rng_);
+    BoxStates next(4, static_cast<Eigen::Index>(count));
+    for (std::size_t j = 0; j < count; ++j) next.col(j) = c.particles.col(idx[j]);
+    c.particles = std::move(next);
+    c.log_weights = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(count),
+                                              -std::log(double(count)));
+  }
+}
+
+}  // namespace vtrack::filters

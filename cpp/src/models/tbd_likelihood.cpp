@@ -1,0 +1,133 @@
+#include "vtrack/models/tbd_likelihood.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <opencv2/imgproc.hpp>
+
+#include "vtrack/core/errors.hpp"
+
+namespace vtrack::models {
+namespace {
+
+std::string str(double v) {
+  std::string s = std::to_string(v);
+  // std::to_string prints 6 decimals: keep small values readable.
+  if (v != 0.0 && std::fabs(v) < 1e-3) s = cv::format("%g", v);
+  return s;
+}
+
+}  // namespace
+
+void validate(const TbdLikelihoodParams& p) {
+  if (!(p.delta_f > 0.0) || !std::isfinite(p.delta_f)) {
+    throw InvalidArgument("delta_f must be a positive finite number, got " + str(p.delta_f));
+  }
+  if (!(p.delta_b > 0.0) || !std::isfinite(p.delta_b)) {
+    throw InvalidArgument("delta_b must be a positive finite number, got " + str(p.delta_b));
+  }
+  if (p.closing_size < 0 || (p.closing_size > 1 && p.closing_size % 2 == 0)) {
+    throw InvalidArgument("closing_size must be 0, 1 or an odd number, got " +
+                          std::to_string(p.closing_size));
+  }
+}
+
+TbdLikelihood::TbdLikelihood(const TbdLikelihoodParams& params) : params_(params) {
+  validate(params_);
+  // zeta_F = 1 / int_0^1 exp(-u / delta_F) du = 1 / (delta_F (1 - exp(-1/delta_F))).
+  log_zeta_f_ = -std::log(params_.delta_f) - std::log(-std::expm1(-1.0 / params_.delta_f));
+}
+
+image::Rect box_to_rect(float x, float y, float w, float h) {
+  // lround on floats that may be huge: clamp first so the int conversion is defined; the
+  // integral image clips to the image anyway.
+  auto px = [](float v) {
+    const float c = std::fmin(std::fmax(v, -1e8f), 1e8f);
+    return static_cast<int>(std::lround(c));
+  };
+  const int x0 = px(x);
+  const int y0 = px(y);
+  return {x0, y0, px(x + w) - x0, px(y + h) - y0};
+}
+
+void TbdLikelihood::set_image(const cv::Mat& y) {
+  if (y.empty()) throw InvalidArgument("y is empty");
+  if (y.type() != CV_32FC1) {
+    throw InvalidArgument("y must be a single-channel float32 image, got OpenCV type " +
+                          std::to_string(y.type()));
+  }
+  // One branch-free pass (vectorised; NaN fails both comparisons), then a second only to name
+  // the first bad pixel. cv::checkRange costs as much as the integral image.
+  bool ok = true;
+  for (int r = 0; r < y.rows; ++r) {
+    const float* row = y.ptr<float>(r);
+    bool row_ok = true;
+    for (int c = 0; c < y.cols; ++c) row_ok &= (row[c] >= 0.0f) & (row[c] <= 1.0f);
+    ok &= row_ok;
+  }
+  if (!ok) {
+    for (int r = 0; r < y.rows; ++r) {
+      for (int c = 0; c < y.cols; ++c) {
+        const float v = y.at<float>(r, c);
+        if (!(v >= 0.0f && v <= 1.0f)) {
+          throw InvalidArgument("y must hold values in [0, 1] (no NaN), got " + str(v) +
+                                " at row " + std::to_string(r) + ", column " + std::to_string(c));
+        }
+      }
+    }
+  }
+  if (params_.closing_size > 1) {
+    const cv::Mat element = cv::getStructuringElement(
+        cv::MORPH_RECT, cv::Size(params_.closing_size, params_.closing_size));
+    cv::morphologyEx(y, closed_, cv::MORPH_CLOSE, element, cv::Point(-1, -1), 1,
+                     cv::BORDER_REPLICATE);
+  } else {
+    y.copyTo(closed_);
+  }
+  integral_.compute(closed_);
+  inv_m_delta_b_ = 1.0 / (static_cast<double>(y.total()) * params_.delta_b);
+}
+
+double TbdLikelihood::explained_sum(const image::Rect& rect,
+                                    const std::vector<image::Rect>& explained) const {
+  const image::Rect r = integral_.clip(rect);
+  const double area = static_cast<double>(r.width) * r.height;
+  if (area <= 0.0) return 0.0;
+  double sum = integral_.sum(r);
+  // Pixels of r inside an explained region count as 1 (eq. 13): add area - sum of the overlap.
+  for (const image::Rect& e : explained) {
+    const int x0 = std::max(r.x, e.x), y0 = std::max(r.y, e.y);
+    const int x1 = std::min(r.x + r.width, e.x + e.width);
+    const int y1 = std::min(r.y + r.height, e.y + e.height);
+    if (x1 <= x0 || y1 <= y0) continue;
+    const image::Rect o{x0, y0, x1 - x0, y1 - y0};
+    sum += static_cast<double>(o.width) * o.height - integral_.sum(o);
+  }
+  // Explained regions that overlap each other would be counted twice there: cap at "all
+  // background" so the mean stays in [0, 1].
+  return std::min(sum, area);
+}
+
+double TbdLikelihood::log_likelihood(float x, float y, float w, float h,
+                                     const std::vector<image::Rect>& explained) const {
+  const image::Rect r = integral_.clip(box_to_rect(x, y, w, h));
+  const double m_x = static_cast<double>(r.width) * r.height;
+  if (m_x <= 0.0) return log_zeta_f_ - 1.0 / params_.delta_f;  // no pixel: pure background
+  const double sum = explained_sum(r, explained);
+  const double ybar = sum / m_x;  // eq. (11)
+  // log of eq. (20): m_x (1 - ybar) / (m delta_B) + log zeta_F - ybar / delta_F, with
+  // m_x (1 - ybar) = m_x - sum.
+  return (m_x - sum) * inv_m_delta_b_ + log_zeta_f_ - ybar / params_.delta_f;
+}
+
+void TbdLikelihood::log_likelihood(const Eigen::Ref<const BoxStates>& states, Eigen::VectorXd& out,
+                                   const std::vector<image::Rect>& explained) const {
+  if (!has_image()) throw InvalidArgument("TbdLikelihood: set_image() has not been called");
+  out.resize(states.cols());
+  for (Eigen::Index j = 0; j < states.cols(); ++j) {
+    out[j] = log_likelihood(states(0, j), states(1, j), states(2, j), states(3, j), explained);
+  }
+}
+
+}  // namespace vtrack::models

@@ -1,0 +1,262 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <set>
+#include <string>
+
+#include <opencv2/core.hpp>
+
+#include "vtrack/core/errors.hpp"
+#include "vtrack/filters/multi_bernoulli.hpp"
+
+using vtrack::InvalidArgument;
+using vtrack::filters::BoxStates;
+using vtrack::filters::MultiBernoulliFilter;
+using vtrack::filters::MultiBernoulliParams;
+using vtrack::filters::Track;
+using vtrack::filters::updated_existence;
+
+namespace {
+
+// A 160 x 120 background (y = 0.95) with dark rectangles (y = 0.1) at the given boxes.
+cv::Mat scene(const std::vector<cv::Rect>& people) {
+  cv::Mat y(120, 160, CV_32F, cv::Scalar(0.95f));
+  for (const auto& r : people) y(r & cv::Rect(0, 0, 160, 120)).setTo(0.1f);
+  return y;
+}
+
+MultiBernoulliParams small_scene_params() {
+  MultiBernoulliParams p;
+  p.width_mean = 12;
+  p.width_std = 3;
+  p.height_mean = 30;
+  p.height_std = 6;
+  p.width_min = 6;
+  p.width_max = 24;
+  p.height_min = 15;
+  p.height_max = 50;
+  p.sigma_x = p.sigma_y = 1.5;
+  p.sigma_w = p.sigma_h = 0.5;
+  p.adaptive_birth_stride = 4;
+  return p;
+}
+
+bool all_finite(const MultiBernoulliFilter& f) {
+  for (const auto& c : f.components()) {
+    if (!std::isfinite(c.existence) || !c.particles.allFinite() || !c.log_weights.allFinite())
+      return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+TEST(MultiBernoulli, ExistenceUpdateIsEq23) {
+  for (double r : {1e-6, 0.02, 0.3, 0.5, 0.9, 0.999}) {
+    for (double rho : {1e-8, 0.1, 1.0, 3.0, 1e6}) {
+      const double expected = r * rho / (1 - r + r * rho);
+      EXPECT_NEAR(updated_existence(r, std::log(rho)), expected, 1e-12 * (1 + expected));
+    }
+  }
+  EXPECT_EQ(updated_existence(0.5, 1e308 * 10), 1.0);  // +inf log rho: certain
+  EXPECT_EQ(updated_existence(0.5, -std::numeric_limits<double>::infinity()), 0.0);
+  EXPECT_EQ(updated_existence(0.0, 50.0), 0.0);
+  EXPECT_EQ(updated_existence(1.0, -50.0), 1.0);
+}
+
+// With y = 1 everywhere, every box has the same likelihood g = zeta_F exp(-1 / delta_F), so rho
+// is known exactly and the four quarter births must follow eq. (22)-(23) in closed form.
+TEST(MultiBernoulli, SingleComponentExistenceFollowsClosedFormWithKnownRho) {
+  MultiBernoulliParams p = small_scene_params();
+  p.adaptive_birth = false;
+  p.prune_threshold = 0.0;
+  p.merge_overlap = 1.0;
+  p.survival_probability = 0.9;
+  p.likelihood.delta_f = 0.5;
+  MultiBernoulliFilter f(160, 120, p, 3);
+  const cv::Mat y(120, 160, CV_32F, cv::Scalar(1.0f));
+  const double rho = f.likelihood().log_zeta_f() - 1.0 / 0.5;
+  const double rho_lin = std::exp(rho);
+  EXPECT_NEAR(rho_lin, 2.0 / (1.0 - std::exp(-2.0)) * std::exp(-2.0), 1e-12);
+  f.step(y);
+  ASSERT_EQ(f.components().size(), 4u);
+  const double r1 = 0.02 * rho_lin / (0.98 + 0.02 * rho_lin);
+  for (const auto& c : f.components()) EXPECT_NEAR(c.existence, r1, 1e-12);
+  f.step(y);
+  ASSERT_EQ(f.components().size(), 8u);
+  const double pred = 0.9 * r1;
+  const double r2 = pred * rho_lin / (1 - pred + pred * rho_lin);
+  for (int i = 0; i < 4; ++i) EXPECT_NEAR(f.components()[i].existence, r2, 1e-12);
+}
+
+// All foreground (y = 0) and boxes as large as the image: every box has ybar = 0 and, with a huge
+// delta_B, g = zeta_F, so rho = zeta_F > 1 and r rises as eq. (23) says.
+TEST(MultiBernoulli, ExistenceRisesWithKnownRhoAboveOne) {
+  MultiBernoulliParams p = small_scene_params();
+  p.adaptive_birth = false;
+  p.width_min = p.width_max = 160;
+  p.height_min = p.height_max = 120;
+  p.likelihood.delta_f = 0.5;
+  p.likelihood.delta_b = 1e12;
+  p.merge_overlap = 1.0;  // never merge: the four image-sized boxes overlap
+  MultiBernoulliFilter f(160, 120, p, 4);
+  f.step(cv::Mat(120, 160, CV_32F, cv::Scalar(0.0f)));
+  const double zeta = std::exp(f.likelihood().log_zeta_f());
+  const double r1 = 0.02 * zeta / (0.98 + 0.02 * zeta);
+  ASSERT_EQ(f.components().size(), 4u);
+  for (const auto& c : f.components()) EXPECT_NEAR(c.existence, r1, 1e-9);
+}
+
+TEST(MultiBernoulli, MergeKeepsTheOlderLabelAndMixesByExistence) {
+  using vtrack::filters::BernoulliComponent;
+  auto component = [](std::uint64_t label, double r, float x, int n) {
+    BernoulliComponent c{label, 0, r, BoxStates(4, n), Eigen::VectorXd::Constant(n, -std::log(n))};
+    for (int j = 0; j < n; ++j) c.particles.col(j) << x + 0.1f * j, 10.f, 20.f, 40.f;
+    return c;
+  };
+  std::vector<BernoulliComponent> cs = {component(4, 0.9, 10, 10), component(7, 0.5, 14, 20),
+                                        component(9, 0.6, 100, 5)};
+  EXPECT_NEAR(vtrack::filters::box_overlap(cs[0].mean(), cs[1].mean()), (20 - 4.5) / 20.0, 1e-5);
+  vtrack::filters::merge_overlapping(cs, 0.6, 0.999);
+  ASSERT_EQ(cs.size(), 2u);
+  EXPECT_EQ(cs[0].label, 4u);  // the older label survives
+  EXPECT_EQ(cs[1].label, 9u);  // the distant one is untouched
+  EXPECT_NEAR(cs[0].existence, 1 - 0.1 * 0.5, 1e-12);
+  ASSERT_EQ(cs[0].particles.cols(), 30);
+  const Eigen::VectorXd w = cs[0].log_weights.array().exp();
+  EXPECT_NEAR(w.sum(), 1.0, 1e-12);
+  EXPECT_NEAR(w.head(10).sum(), 0.9 / 1.4, 1e-12);  // mixture weights proportional to r
+  vtrack::filters::merge_overlapping(cs, 0.6, 0.999);  // nothing left to merge
+  EXPECT_EQ(cs.size(), 2u);
+}
+
+TEST(MultiBernoulli, BackgroundOnlyPrunesEverything) {
+  MultiBernoulliFilter f(160, 120, small_scene_params(), 1);
+  const cv::Mat y(120, 160, CV_32F, cv::Scalar(1.0f));
+  for (int k = 0; k < 5; ++k) {
+    EXPECT_TRUE(f.step(y).empty());
+    EXPECT_TRUE(f.components().empty());  // r of every birth falls below 0.01
+  }
+}
+
+TEST(MultiBernoulli, AllForegroundNeverProducesNaN) {
+  MultiBernoulliFilter f(160, 120, small_scene_params(), 2);
+  const cv::Mat y(120, 160, CV_32F, cv::Scalar(0.0f));
+  for (int k = 0; k < 20; ++k) {
+    for (const Track& t : f.step(y)) {
+      EXPECT_TRUE(std::isfinite(t.x) && std::isfinite(t.y) && std::isfinite(t.w) &&
+                  std::isfinite(t.h) && std::isfinite(t.existence));
+    }
+    ASSERT_TRUE(all_finite(f));
+  }
+}
+
+TEST(MultiBernoulli, FindsOneTargetKeepsItsLabelAndMergesDuplicates) {
+  MultiBernoulliFilter f(160, 120, small_scene_params(), 7);
+  std::set<std::uint64_t> labels;
+  for (int k = 0; k < 30; ++k) {
+    const cv::Rect person(40 + k, 50, 12, 30);
+    const auto tracks = f.step(scene({person}));
+    if (k < 3) continue;  // found within three frames
+    ASSERT_EQ(tracks.size(), 1u) << "frame " << k;
+    labels.insert(tracks[0].label);
+    // The data-driven birth may start from a window 1.4 times the person (this target is 1.9%
+    // of the image, so eq. 20's foreground reward dominates); the box has shrunk by frame 12.
+    if (k < 12) continue;
+    EXPECT_NEAR(tracks[0].x, person.x, 3.0);
+    EXPECT_NEAR(tracks[0].y, person.y, 3.0);
+    EXPECT_NEAR(tracks[0].w, person.width, 3.0);
+    EXPECT_NEAR(tracks[0].h, person.height, 4.0);
+  }
+  EXPECT_EQ(labels.size(), 1u);  // quarter births on the person were merged into the track
+}
+
+TEST(MultiBernoulli, TwoTargetsDistinctLabelsAndOneLeaves) {
+  MultiBernoulliFilter f(160, 120, small_scene_params(), 8);
+  const cv::Rect a(20, 20, 12, 30), b(110, 60, 12, 30);
+  std::uint64_t label_b = 0;
+  for (int k = 0; k < 15; ++k) {
+    const auto tracks = f.step(scene({a, b}));
+    if (k >= 4) {
+      ASSERT_EQ(tracks.size(), 2u) << "frame " << k;
+      EXPECT_NE(tracks[0].label, tracks[1].label);
+      label_b = tracks[0].x > tracks[1].x ? tracks[0].label : tracks[1].label;
+    }
+  }
+  for (int k = 0; k < 10; ++k) {
+    const auto tracks = f.step(scene({b}));  // a vanished
+    if (k >= 3) {
+      ASSERT_EQ(tracks.size(), 1u) << "frame " << k;
+      EXPECT_EQ(tracks[0].label, label_b);
+    }
+  }
+}
+
+TEST(MultiBernoulli, SameSeedSameTracks) {
+  auto run = [](std::uint64_t seed) {
+    MultiBernoulliFilter f(160, 120, small_scene_params(), seed);
+    std::vector<Track> all;
+    for (int k = 0; k < 10; ++k) {
+      for (const auto& t : f.step(scene({{30 + 2 * k, 40, 12, 30}, {100, 10, 12, 30}})))
+        all.push_back(t);
+    }
+    return all;
+  };
+  const auto a = run(11), b = run(11);
+  ASSERT_EQ(a.size(), b.size());
+  ASSERT_FALSE(a.empty());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].label, b[i].label);
+    EXPECT_EQ(a[i].x, b[i].x);
+    EXPECT_EQ(a[i].h, b[i].h);
+    EXPECT_EQ(a[i].existence, b[i].existence);
+  }
+}
+
+TEST(MultiBernoulli, ParticleCountsFollowExistence) {
+  MultiBernoulliParams p = small_scene_params();
+  p.min_particles = 20;
+  p.max_particles = 300;
+  MultiBernoulliFilter f(160, 120, p, 9);
+  for (int k = 0; k < 6; ++k) f.step(scene({{60, 40, 12, 30}}));
+  for (const auto& c : f.components()) {
+    const auto expected = std::clamp<double>(std::ceil(c.existence * 300), 20, 300);
+    EXPECT_EQ(c.particles.cols(), static_cast<Eigen::Index>(expected));
+    EXPECT_NEAR(c.log_weights.array().exp().sum(), 1.0, 1e-9);
+  }
+}
+
+TEST(MultiBernoulli, RejectsBadParametersNamingThem) {
+  auto expect_error = [](auto mutate, const std::string& name) {
+    MultiBernoulliParams p;
+    mutate(p);
+    try {
+      MultiBernoulliFilter f(64, 48, p);
+      FAIL() << name << " accepted";
+    } catch (const InvalidArgument& e) {
+      EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    }
+  };
+  expect_error([](MultiBernoulliParams& p) { p.survival_probability = 0.0; }, "survival_probability");
+  expect_error([](MultiBernoulliParams& p) { p.survival_probability = 1.5; }, "survival_probability");
+  expect_error([](MultiBernoulliParams& p) { p.min_particles = 500; }, "min_particles");
+  expect_error([](MultiBernoulliParams& p) { p.sigma_x = 0.0; }, "sigma_x");
+  expect_error([](MultiBernoulliParams& p) { p.sigma_h = -1.0; }, "sigma_h");
+  expect_error([](MultiBernoulliParams& p) { p.likelihood.delta_f = 0.0; }, "delta_f");
+  expect_error([](MultiBernoulliParams& p) { p.width_max = 5.0; }, "width_max");
+  MultiBernoulliParams ok;
+  ok.survival_probability = 1.0;  // P_S = 1 is allowed
+  EXPECT_NO_THROW(MultiBernoulliFilter(64, 48, ok));
+  EXPECT_THROW(MultiBernoulliFilter(0, 48), InvalidArgument);
+}
+
+TEST(MultiBernoulli, RejectsWrongImages) {
+  MultiBernoulliFilter f(64, 48);
+  EXPECT_THROW(f.step(cv::Mat(48, 63, CV_32F, cv::Scalar(1.0f))), InvalidArgument);
+  EXPECT_THROW(f.step(cv::Mat(48, 64, CV_64F, cv::Scalar(1.0))), InvalidArgument);
+  cv::Mat y(48, 64, CV_32F, cv::Scalar(1.0f));
+  y.at<float>(1, 2) = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_THROW(f.step(y), InvalidArgument);
+  EXPECT_EQ(f.frame(), 0);  // nothing happened
+}

@@ -1,0 +1,210 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "vtrack/core/errors.hpp"
+#include "vtrack/core/random.hpp"
+#include "vtrack/models/tbd_likelihood.hpp"
+
+using vtrack::InvalidArgument;
+using vtrack::models::BoxStates;
+using vtrack::models::TbdLikelihood;
+using vtrack::models::TbdLikelihoodParams;
+
+namespace {
+
+cv::Mat random_image(int rows, int cols, vtrack::core::Rng& rng) {
+  cv::Mat y(rows, cols, CV_32F);
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c) y.at<float>(r, c) = static_cast<float>(rng.uniform());
+  return y;
+}
+
+struct PixelBox {
+  int x0, y0, x1, y1;  // clipped, [x0, x1) x [y0, y1)
+};
+
+PixelBox clipped(const cv::Mat& y, float x, float yy, float w, float h) {
+  const int x0 = static_cast<int>(std::lround(x)), y0 = static_cast<int>(std::lround(yy));
+  const int x1 = static_cast<int>(std::lround(x + w)), y1 = static_cast<int>(std::lround(yy + h));
+  return {std::clamp(x0, 0, y.cols), std::clamp(y0, 0, y.rows), std::clamp(x1, 0, y.cols),
+          std::clamp(y1, 0, y.rows)};
+}
+
+// log g(y | X) - log f(y) by brute force from eqs. (11)-(14) and (19): fill the target regions
+// with 1 to get ybar_B (eq. 13-14), then log g_B(ybar_B) + sum_j log g_F(ybar_j), minus
+// log f(y) = log zeta_B + sum_i y_i / (m delta_B) (zeta_B = 1 here; it cancels). zeta_F is
+// obtained by numerical integration of exp(-u / delta_F) on [0, 1].
+double brute_force_log_ratio(const cv::Mat& y, const std::vector<std::array<float, 4>>& boxes,
+                             const TbdLikelihoodParams& p) {
+  double integral = 0.0;
+  const int steps = 200000;
+  for (int k = 0; k < steps; ++k) integral += std::exp(-(k + 0.5) / steps / p.delta_f) / steps;
+  const double log_zeta_f = -std::log(integral);
+  cv::Mat filled = y.clone();
+  double log_gf = 0.0;
+  for (const auto& b : boxes) {
+    const PixelBox pb = clipped(y, b[0], b[1], b[2], b[3]);
+    double sum = 0.0;
+    int count = 0;
+    for (int r = pb.y0; r < pb.y1; ++r)
+      for (int c = pb.x0; c < pb.x1; ++c) {
+        sum += y.at<float>(r, c);
+        filled.at<float>(r, c) = 1.0f;
+        ++count;
+      }
+    const double ybar = count ? sum / count : 1.0;
+    log_gf += log_zeta_f - ybar / p.delta_f;
+  }
+  const double m = static_cast<double>(y.total());
+  const double ybar_b = cv::sum(filled)[0] / m;              // eq. (14)
+  const double log_gb = ybar_b / p.delta_b;                   // log g_B, zeta_B = 1
+  const double log_f = cv::sum(y)[0] / (m * p.delta_b);       // log f(y), zeta_B = 1
+  return log_gb + log_gf - log_f;
+}
+
+}  // namespace
+
+TEST(TbdLikelihood, SeparableFormMatchesBruteForceOfEq19) {
+  vtrack::core::Rng rng(5);
+  TbdLikelihoodParams p;
+  p.closing_size = 0;
+  p.delta_f = 0.3;
+  p.delta_b = 0.05;
+  for (int trial = 0; trial < 30; ++trial) {
+    const cv::Mat y = random_image(24 + int(rng.below(20)), 30 + int(rng.below(20)), rng);
+    TbdLikelihood lik(p);
+    lik.set_image(y);
+    // Non-overlapping boxes: one in the left third, one in the right third (possibly sticking
+    // out of the image), plus sometimes one wholly outside.
+    std::vector<std::array<float, 4>> boxes = {
+        {float(rng.uniform(-5, 5)), float(rng.uniform(-5, 10)), float(rng.uniform(1, 9)),
+         float(rng.uniform(1, 30))},
+        {float(rng.uniform(22, 30)), float(rng.uniform(-5, 20)), float(rng.uniform(1, 30)),
+         float(rng.uniform(1, 30))},
+    };
+    if (trial % 3 == 0) boxes.push_back({-50.f, -50.f, 10.f, 10.f});
+    double sum = 0.0;
+    for (const auto& b : boxes) sum += lik.log_likelihood(b[0], b[1], b[2], b[3]);
+    EXPECT_NEAR(sum, brute_force_log_ratio(y, boxes, p), 1e-6 * (1 + std::fabs(sum)));
+  }
+}
+
+// Eq. (13): the other targets' regions filled with background. Evaluating a box with those
+// regions as `explained` equals evaluating it on an image where they are set to 1.
+TEST(TbdLikelihood, ExplainedRegionsAreBackgroundAsInEq13) {
+  vtrack::core::Rng rng(8);
+  TbdLikelihoodParams p;
+  p.closing_size = 0;
+  for (int trial = 0; trial < 30; ++trial) {
+    const cv::Mat y = random_image(40, 50, rng);
+    // Two disjoint rectangles (columns < 34 and >= 35), partly outside the image at times.
+    const std::vector<vtrack::image::Rect> explained = {
+        {int(rng.below(20)) - 5, int(rng.below(20)) - 5, int(rng.below(20)), int(rng.below(30))},
+        {35 + int(rng.below(10)), int(rng.below(30)), int(rng.below(20)), int(rng.below(20))}};
+    cv::Mat filled = y.clone();
+    for (const auto& e : explained) {
+      const cv::Rect r = cv::Rect(e.x, e.y, e.width, e.height) & cv::Rect(0, 0, 50, 40);
+      if (r.area() > 0) filled(r).setTo(1.0f);
+    }
+    TbdLikelihood lik(p), reference(p);
+    lik.set_image(y);
+    reference.set_image(filled);
+    const float bx = float(rng.uniform(-10, 45)), by = float(rng.uniform(-10, 35));
+    const float bw = float(rng.uniform(1, 40)), bh = float(rng.uniform(1, 40));
+    EXPECT_NEAR(lik.log_likelihood(bx, by, bw, bh, explained),
+                reference.log_likelihood(bx, by, bw, bh), 1e-9);
+  }
+}
+
+TEST(TbdLikelihood, BatchedEqualsSingle) {
+  vtrack::core::Rng rng(6);
+  const cv::Mat y = random_image(40, 50, rng);
+  TbdLikelihood lik;
+  lik.set_image(y);
+  BoxStates s(4, 100);
+  for (int j = 0; j < 100; ++j)
+    s.col(j) << float(rng.uniform(-10, 50)), float(rng.uniform(-10, 40)),
+        float(rng.uniform(0, 30)), float(rng.uniform(0, 30));
+  Eigen::VectorXd out;
+  lik.log_likelihood(s, out);
+  ASSERT_EQ(out.size(), 100);
+  for (int j = 0; j < 100; ++j)
+    EXPECT_DOUBLE_EQ(out[j], lik.log_likelihood(s(0, j), s(1, j), s(2, j), s(3, j)));
+}
+
+TEST(TbdLikelihood, ForegroundScoresAboveOneBackgroundBelow) {
+  cv::Mat y(100, 120, CV_32F, cv::Scalar(1.0f));
+  y(cv::Rect(40, 20, 20, 50)).setTo(0.1f);
+  TbdLikelihood lik;
+  lik.set_image(y);
+  const double on = lik.log_likelihood(40, 20, 20, 50);
+  EXPECT_GT(on, 0.0);                                     // rho > 1 raises r (eq. 23)
+  EXPECT_LT(lik.log_likelihood(0, 0, 20, 50), 0.0);       // background lowers it
+  EXPECT_GT(on, lik.log_likelihood(45, 25, 20, 50));      // a shifted box scores less
+  EXPECT_GT(on, lik.log_likelihood(35, 15, 30, 60));      // so does a larger one
+}
+
+TEST(TbdLikelihood, AllBackgroundAndAllForegroundAreFinite) {
+  for (float v : {0.0f, 1.0f}) {
+    cv::Mat y(30, 40, CV_32F, cv::Scalar(v));
+    TbdLikelihood lik;
+    lik.set_image(y);
+    for (float w : {0.0f, 1.0f, 10.0f, 100.0f}) {
+      const double l = lik.log_likelihood(5, 5, w, w);
+      EXPECT_TRUE(std::isfinite(l)) << v << " " << w;
+    }
+    EXPECT_TRUE(std::isfinite(lik.log_likelihood(-1e30f, 1e30f, 1e30f, -5.0f)));
+  }
+}
+
+TEST(TbdLikelihood, ClosingRemovesSpecks) {
+  cv::Mat y(40, 40, CV_32F, cv::Scalar(1.0f));
+  y.at<float>(20, 20) = 0.0f;  // a one-pixel speck
+  y(cv::Rect(5, 5, 6, 6)).setTo(0.0f);  // a blob larger than the element survives
+  TbdLikelihoodParams p;
+  p.closing_size = 3;
+  TbdLikelihood lik(p);
+  lik.set_image(y);
+  EXPECT_FLOAT_EQ(lik.processed_image().at<float>(20, 20), 1.0f);
+  EXPECT_DOUBLE_EQ(lik.integral().sum({15, 15, 10, 10}), 100.0);
+  EXPECT_DOUBLE_EQ(lik.integral().sum({5, 5, 6, 6}), 0.0);
+}
+
+TEST(TbdLikelihood, RejectsBadImagesAndParameters) {
+  TbdLikelihood lik;
+  cv::Mat y(10, 10, CV_32F, cv::Scalar(0.5f));
+  y.at<float>(3, 4) = std::numeric_limits<float>::quiet_NaN();
+  try {
+    lik.set_image(y);
+    FAIL() << "NaN accepted";
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("row 3, column 4"), std::string::npos) << e.what();
+  }
+  y.at<float>(3, 4) = 1.5f;
+  EXPECT_THROW(lik.set_image(y), InvalidArgument);
+  EXPECT_THROW(lik.set_image(cv::Mat(10, 10, CV_8U, cv::Scalar(1))), InvalidArgument);
+  EXPECT_THROW(lik.set_image(cv::Mat()), InvalidArgument);
+  for (auto bad : {0.0, -1.0, std::numeric_limits<double>::quiet_NaN()}) {
+    TbdLikelihoodParams p;
+    p.delta_f = bad;
+    EXPECT_THROW(TbdLikelihood{p}, InvalidArgument);
+    p = {};
+    p.delta_b = bad;
+    try {
+      TbdLikelihood{p};
+      FAIL();
+    } catch (const InvalidArgument& e) {
+      EXPECT_NE(std::string(e.what()).find("delta_b"), std::string::npos);
+    }
+  }
+  TbdLikelihoodParams p;
+  p.closing_size = 4;
+  EXPECT_THROW(TbdLikelihood{p}, InvalidArgument);
+}

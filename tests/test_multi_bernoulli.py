@@ -1,0 +1,181 @@
+"""vtrack.MultiBernoulliTracker: API, bad input, and end to end on a synthetic scene."""
+
+import threading
+
+import numpy as np
+import pytest
+
+import vtrack
+from vtrack.evaluate import evaluate
+from vtrack.mot import read_mot, track_rows, write_mot
+from vtrack.synthetic import make_scene, render_y
+
+
+def background(width=160, height=120):
+    return np.full((height, width), 0.95, np.float32)
+
+
+def test_defaults_and_params():
+    d = vtrack.MultiBernoulliTracker.default_params()
+    assert d["survival_probability"] == pytest.approx(0.99)
+    assert d["birth_probability"] == pytest.approx(0.02)  # the paper's r_Gamma
+    assert d["prune_threshold"] == pytest.approx(0.01)
+    assert d["estimate_threshold"] == pytest.approx(0.5)
+    t = vtrack.MultiBernoulliTracker((160, 120), seed=1, delta_f=0.2, max_particles=100,
+                                     quarter_birth=False, resampling="residual")
+    assert t.params["delta_f"] == 0.2 and t.params["max_particles"] == 100
+    assert t.params["quarter_birth"] is False and t.params["resampling"] == "residual"
+    assert t.image_size == (160, 120) and t.frame == 0
+    assert t.step(np.ones((120, 160), np.float32)) == [] and t.frame == 1
+
+
+@pytest.mark.parametrize("kwargs, exc, words", [
+    ({"survival_probability": 0.0}, ValueError, "survival_probability"),
+    ({"survival_probability": 1.01}, ValueError, "survival_probability"),
+    ({"min_particles": 500, "max_particles": 100}, ValueError, "min_particles"),
+    ({"sigma_x": 0.0}, ValueError, "sigma_x"),
+    ({"sigma_w": -1}, ValueError, "sigma_w"),
+    ({"delta_b": 0}, ValueError, "delta_b"),
+    ({"sigma_x": "2"}, TypeError, "sigma_x"),
+    ({"max_particles": 10.5}, TypeError, "max_particles"),
+    ({"quarter_birth": 1}, TypeError, "quarter_birth"),
+    ({"resampling": "bogus"}, ValueError, "bogus"),
+    ({"no_such_param": 1}, TypeError, "no_such_param"),
+])
+def test_bad_parameters(kwargs, exc, words):
+    with pytest.raises(exc, match=words):
+        vtrack.MultiBernoulliTracker((160, 120), **kwargs)
+
+
+def test_bad_image_size_and_images():
+    with pytest.raises(TypeError, match="image_size"):
+        vtrack.MultiBernoulliTracker(160)
+    with pytest.raises(ValueError, match="image_size"):
+        vtrack.MultiBernoulliTracker((160, 120, 3))
+    with pytest.raises(ValueError, match="width"):
+        vtrack.MultiBernoulliTracker((0, 120))
+    t = vtrack.MultiBernoulliTracker((160, 120), seed=np.uint64(3))
+    with pytest.raises(TypeError, match="y must have dtype float32"):
+        t.step(background().astype(np.float64))
+    with pytest.raises(ValueError, match="120 x 160"):
+        t.step(np.ones((120, 161), np.float32))
+    with pytest.raises(ValueError, match="y"):
+        t.step(np.ones((120, 160, 1), np.float32))
+    y = background()
+    y[5, 7] = np.nan
+    with pytest.raises(ValueError, match="row 5, column 7"):
+        t.step(y)
+    assert t.frame == 0
+
+
+def test_one_person_one_label_and_components_exposed():
+    t = vtrack.MultiBernoulliTracker((160, 120), seed=2, width_mean=12, width_std=3,
+                                     height_mean=30, height_std=6, width_min=6, width_max=24,
+                                     height_min=15, height_max=50, adaptive_birth_stride=4,
+                                     sigma_x=1.5, sigma_y=1.5, sigma_w=0.5, sigma_h=0.5)
+    labels = set()
+    for k in range(20):
+        y = background()
+        y[50:80, 40 + k:52 + k] = 0.1
+        tracks = t.step(y)
+        if k >= 3:
+            assert len(tracks) == 1
+            labels.add(tracks[0].label)
+            x, yy, w, h = tracks[0].box
+            assert abs(x - (40 + k)) < 3 and abs(yy - 50) < 3
+            assert 0.5 < tracks[0].existence <= 1.0
+    assert len(labels) == 1
+    assert "Track(label=" in repr(tracks[0])
+    comps = t.components
+    assert any(c.label in labels for c in comps)
+    c = comps[0]
+    assert c.particles.shape == (len(c.weights), 4) and c.particles.dtype == np.float32
+    assert c.weights.sum() == pytest.approx(1.0)
+    assert t.tracks[0].label == tracks[0].label
+    # Snapshots stay valid after further steps (they are copies, not views into the filter).
+    before = [(c.label, c.existence, c.particles.copy()) for c in comps]
+    for _ in range(3):
+        t.step(background())
+    assert [(c.label, c.existence) for c in comps] == [b[:2] for b in before]
+    assert all(np.array_equal(c.particles, b[2]) for c, b in zip(comps, before))
+
+
+def test_all_background_and_all_foreground_no_nan():
+    t = vtrack.MultiBernoulliTracker((160, 120), seed=3)
+    for y in (np.ones((120, 160), np.float32), np.zeros((120, 160), np.float32)):
+        for _ in range(5):
+            for tr in t.step(y):
+                assert np.all(np.isfinite(tr.box)) and np.isfinite(tr.existence)
+        assert all(np.all(np.isfinite(c.particles)) for c in t.components)
+
+
+def run(scene, seed=0, **params):
+    """Tracks of the scene's rendered y images, as MOT rows, and the per-frame counts."""
+    tracker = vtrack.MultiBernoulliTracker((scene.width, scene.height), seed=seed, **params)
+    rng = np.random.default_rng(100 + seed)
+    rows, counts = [], []
+    for k in range(len(scene)):
+        tracks = tracker.step(render_y(scene.mask(k), rng))
+        rows += track_rows(k + 1, tracks)
+        counts.append(len(tracks))
+    return np.asarray(rows, float).reshape(-1, 10), counts
+
+
+@pytest.fixture(scope="module")
+def pets_like_scene():
+    # PETS09-S2L1-like: 768 x 576, people 25-60 x 70-140 px walking 3-5 px/frame (7 frames/s),
+    # six of them entering from both sides within 100 frames, crossing, the last leaving at 315.
+    return make_scene(768, 576, n_frames=330, n_people=6, seed=1, size=((25, 60), (70, 140)),
+                      speed=(3.0, 5.0), enter_within=100)
+
+
+def test_end_to_end_metrics_and_counts(pets_like_scene, tmp_path):
+    """The default parameters on a 768 x 576 scene.
+
+    Measured on this scene (seed 1) with tracker seeds 0-3: MOTA 0.93, IDF1 0.97, no ID switch;
+    other scene seeds: 0.93-0.94 (2, 5, 6), 0.89 (3), 0.58 (4, two people walking as one blob,
+    a limit of the model). The errors left are latencies: a person counts in the ground truth
+    once a quarter of the box is in view, and a track is confirmed 1-3 frames later; a track
+    outlives its person by about one frame. Six people x ~4 frames of latency of ~1100 GT boxes
+    bounds MOTA near 0.95. The thresholds (MOTA > 0.85, IDF1 > 0.9) leave room for the seeds,
+    and fail on real regressions (a lost, split or duplicated track costs ~0.1 MOTA).
+    """
+    scene = pets_like_scene
+    rows, counts = run(scene, seed=0)
+    write_mot(tmp_path / "tracks.txt", rows)
+    write_mot(tmp_path / "gt.txt", scene.gt_rows())
+    m = evaluate(read_mot(tmp_path / "gt.txt"), read_mot(tmp_path / "tracks.txt"))
+    assert m["MOTA"] > 0.85, m
+    assert m["IDF1"] > 0.9, m
+    assert m["IDSW"] <= 2, m
+    truth = [scene.count(k) for k in range(len(scene))]
+    # The right count once entries have settled: the frames where everyone has been in view for
+    # 5 frames (entry latency) and nobody leaves within 3 frames.
+    settled = [k for k in range(5, len(scene) - 3)
+               if len(set(truth[k - 5:k + 4])) == 1]
+    right = sum(counts[k] == truth[k] for k in settled)
+    assert right >= 0.95 * len(settled), (right, len(settled))
+    # Everyone leaves, and the tracker reports nobody within 3 frames of the last exit.
+    last = max(k for k in range(len(scene)) if truth[k] > 0)
+    assert max(truth) == 6 and last + 4 < len(scene)
+    assert counts[last + 4:] == [0] * (len(scene) - last - 4)
+
+
+def test_same_seed_same_tracks_and_threads(pets_like_scene):
+    scene = pets_like_scene
+    rng = np.random.default_rng(5)
+    ys = [render_y(scene.mask(k), rng) for k in range(60, 90)]
+
+    def tracks_of(out, index):
+        t = vtrack.MultiBernoulliTracker((768, 576), seed=11)
+        out[index] = [[(tr.label, *tr.box, tr.existence) for tr in t.step(y)] for y in ys]
+
+    results = [None] * 3
+    tracks_of(results, 0)
+    threads = [threading.Thread(target=tracks_of, args=(results, i)) for i in (1, 2)]
+    for th in threads:
+        th.start()
+    for th in threads:
+        th.join()
+    assert results[0] == results[1] == results[2]
+    assert any(results[0])
