@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
+#include "vtrack/apps/parameters.hpp"
 #include "vtrack/core/random.hpp"
 
 namespace vtrack::bindings {
@@ -51,6 +52,11 @@ cv::Mat gray_image(const py::handle& obj, const char* name, py::array& keep);
 
 // `rng` may be a vtrack.Rng (used and advanced in place) or an int seed (a fresh Rng).
 core::Rng& rng_from(const py::handle& rng, core::Rng& storage);
+
+// A Python value for the parameter `name` whose default is `kind` (bool, int, real or str):
+// TypeError naming the parameter when the value is of another kind.
+apps::ParameterValue parameter_from_python(const std::string& name, const py::handle& value,
+                                           const apps::ParameterValue& kind);
 
 void bind_core(py::module_& m);
 void bind_image(py::module_& m);

@@ -1,65 +1,18 @@
 // Bindings of vtrack::filters: the multi-Bernoulli track-before-detect tracker.
-#include <map>
+#include <algorithm>
 #include <variant>
 
 #include "common.hpp"
-#include "vtrack/core/resampling.hpp"
+#include "vtrack/apps/parameters.hpp"
 #include "vtrack/filters/multi_bernoulli.hpp"
 
 namespace vtrack::bindings {
 namespace {
 
 using filters::MultiBernoulliParams;
-using Field = std::variant<double MultiBernoulliParams::*, int MultiBernoulliParams::*,
-                           bool MultiBernoulliParams::*>;
-
-// Keyword name -> field of MultiBernoulliParams (the likelihood's fields are handled apart).
-const std::map<std::string, Field>& fields() {
-  using P = MultiBernoulliParams;
-  static const std::map<std::string, Field> f = {
-      {"survival_probability", &P::survival_probability},
-      {"sigma_x", &P::sigma_x},
-      {"sigma_y", &P::sigma_y},
-      {"sigma_w", &P::sigma_w},
-      {"sigma_h", &P::sigma_h},
-      {"width_mean", &P::width_mean},
-      {"width_std", &P::width_std},
-      {"height_mean", &P::height_mean},
-      {"height_std", &P::height_std},
-      {"width_min", &P::width_min},
-      {"width_max", &P::width_max},
-      {"height_min", &P::height_min},
-      {"height_max", &P::height_max},
-      {"quarter_birth", &P::quarter_birth},
-      {"birth_probability", &P::birth_probability},
-      {"birth_particles", &P::birth_particles},
-      {"adaptive_birth", &P::adaptive_birth},
-      {"adaptive_birth_probability", &P::adaptive_birth_probability},
-      {"adaptive_birth_log_likelihood", &P::adaptive_birth_log_likelihood},
-      {"cover_existence", &P::cover_existence},
-      {"established_age", &P::established_age},
-      {"adaptive_birth_stride", &P::adaptive_birth_stride},
-      {"adaptive_birth_max", &P::adaptive_birth_max},
-      {"min_particles", &P::min_particles},
-      {"max_particles", &P::max_particles},
-      {"prune_threshold", &P::prune_threshold},
-      {"merge_overlap", &P::merge_overlap},
-      {"estimate_threshold", &P::estimate_threshold},
-      {"max_existence", &P::max_existence},
-  };
-  return f;
-}
 
 std::string type_name(const py::handle& v) {
   return py::str(py::type::of(v).attr("__name__")).cast<std::string>();
-}
-
-// Numbers as Python and NumPy give them (int, float, np.int64, np.float32...), never bool.
-double as_double(const std::string& name, const py::handle& v) {
-  if (py::isinstance<py::bool_>(v) || py::isinstance<py::str>(v) || !PyNumber_Check(v.ptr())) {
-    throw py::type_error(name + " must be a number, got " + type_name(v));
-  }
-  return py::float_(py::reinterpret_borrow<py::object>(v)).cast<double>();
 }
 
 int as_int(const std::string& name, const py::handle& v) {
@@ -69,51 +22,53 @@ int as_int(const std::string& name, const py::handle& v) {
   return py::int_(py::reinterpret_borrow<py::object>(v)).cast<int>();
 }
 
+}  // namespace
+
+apps::ParameterValue parameter_from_python(const std::string& name, const py::handle& v,
+                                           const apps::ParameterValue& kind) {
+  // The default value's alternative says what the parameter takes.
+  if (std::holds_alternative<bool>(kind)) {
+    if (!py::isinstance<py::bool_>(v)) throw py::type_error(name + " must be a bool, got " + type_name(v));
+    return v.cast<bool>();
+  }
+  if (std::holds_alternative<long long>(kind)) {
+    if (py::isinstance<py::bool_>(v) || !PyIndex_Check(v.ptr())) {
+      throw py::type_error(name + " must be an int, got " + type_name(v));
+    }
+    return py::int_(py::reinterpret_borrow<py::object>(v)).cast<long long>();
+  }
+  if (std::holds_alternative<std::string>(kind)) {
+    if (!py::isinstance<py::str>(v)) throw py::type_error(name + " must be a str, got " + type_name(v));
+    return v.cast<std::string>();
+  }
+  // Numbers as Python and NumPy give them (int, float, np.int64, np.float32...), never bool.
+  if (py::isinstance<py::bool_>(v) || py::isinstance<py::str>(v) || !PyNumber_Check(v.ptr())) {
+    throw py::type_error(name + " must be a number, got " + type_name(v));
+  }
+  return py::float_(py::reinterpret_borrow<py::object>(v)).cast<double>();
+}
+
+namespace {
+
 MultiBernoulliParams params_from(const py::kwargs& kwargs) {
   MultiBernoulliParams p;
+  const auto defaults = apps::parameter_values(p);
   for (const auto& item : kwargs) {
     const std::string name = item.first.cast<std::string>();
-    const py::handle v = item.second;
-    if (name == "delta_f") {
-      p.likelihood.delta_f = as_double(name, v);
-    } else if (name == "delta_b") {
-      p.likelihood.delta_b = as_double(name, v);
-    } else if (name == "closing_size") {
-      p.likelihood.closing_size = as_int(name, v);
-    } else if (name == "resampling") {
-      if (!py::isinstance<py::str>(v)) throw py::type_error("resampling must be a str, got " + type_name(v));
-      p.resampling = core::parse_resampling_scheme(v.cast<std::string>());
-    } else {
-      const auto it = fields().find(name);
-      if (it == fields().end()) {
-        throw py::type_error("MultiBernoulliTracker() got an unexpected keyword argument '" + name + "'");
-      }
-      std::visit(
-          [&](auto member) {
-            using T = std::remove_reference_t<decltype(p.*member)>;
-            if constexpr (std::is_same_v<T, bool>) {
-              if (!py::isinstance<py::bool_>(v)) throw py::type_error(name + " must be a bool, got " + type_name(v));
-              p.*member = v.cast<bool>();
-            } else if constexpr (std::is_same_v<T, int>) {
-              p.*member = as_int(name, v);
-            } else {
-              p.*member = as_double(name, v);
-            }
-          },
-          it->second);
+    const auto it = std::find_if(defaults.begin(), defaults.end(),
+                                 [&](const auto& d) { return d.first == name; });
+    if (it == defaults.end()) {
+      throw py::type_error("MultiBernoulliTracker() got an unexpected keyword argument '" + name + "'");
     }
+    apps::set_parameter(p, name, parameter_from_python(name, item.second, it->second));
   }
   return p;
 }
 
 py::dict params_dict(const MultiBernoulliParams& p) {
   py::dict d;
-  d["delta_f"] = p.likelihood.delta_f;
-  d["delta_b"] = p.likelihood.delta_b;
-  d["closing_size"] = p.likelihood.closing_size;
-  d["resampling"] = core::to_string(p.resampling);
-  for (const auto& [name, field] : fields()) {
-    std::visit([&, n = name](auto member) { d[n.c_str()] = p.*member; }, field);
+  for (const auto& [name, value] : apps::parameter_values(p)) {
+    d[name.c_str()] = std::visit([](const auto& v) { return py::cast(v); }, value);
   }
   return d;
 }

@@ -11,6 +11,8 @@
 #include <unistd.h>
 
 #include "vtrack/apps/background_subtraction.hpp"
+#include "vtrack/apps/parameters.hpp"
+#include "vtrack/apps/track_video.hpp"
 #include "vtrack/apps/video_source.hpp"
 #include "vtrack/core/errors.hpp"
 #include "vtrack/version.hpp"
@@ -84,6 +86,39 @@ double parse_double(const std::string& option, const std::string& text) {
   return value;
 }
 
+// Progress on stderr every 25 frames: one line rewritten in place on a terminal, otherwise one
+// line per update. The line is closed when the job ends, however it ends.
+class ProgressLine {
+ public:
+  explicit ProgressLine(std::string job)
+      : job_(std::move(job)), tty_(isatty(fileno(stderr)) != 0),
+        start_(std::chrono::steady_clock::now()) {}
+  ~ProgressLine() { finish(); }
+
+  std::function<void(long long, long long)> callback() {
+    return [this](long long done, long long total) {
+      if (done % 25 != 0 && done != total) return;
+      const double seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+      std::fprintf(stderr, "%s%s: frame %lld", tty_ ? "\r" : "", job_.c_str(), done);
+      if (total > 0) std::fprintf(stderr, "/%lld", total);
+      std::fprintf(stderr, " (%.1f frames/s)%s", seconds > 0 ? done / seconds : 0.0,
+                   tty_ ? "" : "\n");
+      printed_ = true;
+    };
+  }
+  void finish() {
+    if (printed_ && tty_) std::fputc('\n', stderr);
+    printed_ = false;
+  }
+
+ private:
+  std::string job_;
+  bool tty_;
+  std::chrono::steady_clock::time_point start_;
+  bool printed_ = false;
+};
+
 int run_bgs(const std::vector<std::string>& args) {
   std::string input, output;
   vtrack::image::KdeBackgroundParams params;
@@ -133,33 +168,94 @@ int run_bgs(const std::vector<std::string>& args) {
     throw UsageError(e.what());
   }
 
-  // Progress on stderr every 25 frames: one line rewritten in place on a terminal, otherwise
-  // one line per update.
-  const bool tty = isatty(fileno(stderr)) != 0;
-  const auto start = std::chrono::steady_clock::now();
-  bool printed = false;
-  const auto progress = [&](long long done, long long total) {
-    if (done % 25 != 0 && done != total) return;
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::fprintf(stderr, "%sbgs: frame %lld", tty ? "\r" : "", done);
-    if (total > 0) std::fprintf(stderr, "/%lld", total);
-    std::fprintf(stderr, " (%.1f frames/s)%s", seconds > 0 ? done / seconds : 0.0, tty ? "" : "\n");
-    printed = true;
-  };
-  const auto finish_line = [&] {
-    if (printed && tty) std::fputc('\n', stderr);
-  };
+  ProgressLine progress("bgs");
   vtrack::apps::BgsResult result;
-  try {
-    result = vtrack::apps::run_background_subtraction(input, output, params, progress);
-  } catch (...) {
-    finish_line();
-    throw;
-  }
-  finish_line();
+  result = vtrack::apps::run_background_subtraction(input, output, params, progress.callback());
+  progress.finish();
   std::cout << "wrote " << result.frames << " y images to " << output
             << (result.video ? " (video)" : " (PNG folder)") << "\n";
+  return 0;
+}
+
+// `--set name=value`: a number, true/false, or a name (e.g. resampling=residual).
+vtrack::apps::ParameterValue parse_value(const std::string& text) {
+  if (text == "true") return true;
+  if (text == "false") return false;
+  std::size_t used = 0;
+  try {
+    const long long i = std::stoll(text, &used);
+    if (used == text.size()) return i;
+    const double d = std::stod(text, &used);
+    if (used == text.size()) return d;
+  } catch (const std::exception&) {
+  }
+  return text;
+}
+
+int run_track(const std::vector<std::string>& args) {
+  std::string input, output, render, method = "mb";
+  std::vector<std::string> settings;
+  std::string config;
+  long long seed = -1;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a.empty() || a[0] != '-') {
+      if (!input.empty()) throw UsageError("track takes one VIDEO, got '" + input + "' and '" + a + "'");
+      input = a;
+      continue;
+    }
+    if (i + 1 >= args.size()) throw UsageError("option " + a + " needs a value");
+    const std::string& value = args[++i];
+    if (a == "--out") {
+      output = value;
+    } else if (a == "--method") {
+      method = value;
+    } else if (a == "--render") {
+      render = value;
+    } else if (a == "--config") {
+      config = value;
+    } else if (a == "--seed") {
+      seed = parse_int(a, value);
+      if (seed < 0) throw UsageError("--seed must be >= 0, got " + value);
+    } else if (a == "--set") {
+      settings.push_back(value);
+    } else {
+      throw UsageError("unknown option '" + a + "'");
+    }
+  }
+  if (method != "mb") throw UsageError("--method must be 'mb' (got '" + method + "')");
+  if (input.empty()) throw UsageError("track needs a VIDEO (or image folder)");
+  if (output.empty()) throw UsageError("track needs --out TRACKS (MOTChallenge text)");
+  if (!render.empty() && !vtrack::apps::is_video_output(render)) {
+    throw UsageError("--render must name a .avi, .mp4 or .mkv file, got '" + render + "'");
+  }
+  vtrack::apps::MbPipelineParams params;
+  if (!config.empty()) vtrack::apps::load_pipeline_config(config, params);
+  if (seed >= 0) params.seed = static_cast<std::uint64_t>(seed);
+  for (const auto& setting : settings) {
+    const std::size_t eq = setting.find('=');
+    if (eq == std::string::npos) throw UsageError("--set expects name=value, got '" + setting + "'");
+    const std::string name = setting.substr(0, eq);
+    const auto value = parse_value(setting.substr(eq + 1));
+    if (!vtrack::apps::set_parameter(params.background, name, value) &&
+        !vtrack::apps::set_parameter(params.tracker, name, value)) {
+      throw UsageError("--set: unknown parameter '" + name + "'");
+    }
+  }
+  try {
+    vtrack::image::validate(params.background);
+    vtrack::filters::validate(params.tracker);
+  } catch (const vtrack::InvalidArgument& e) {
+    throw UsageError(e.what());
+  }
+  ProgressLine progress("track");
+  const auto rows = vtrack::apps::track_video_mb(input, params, render, progress.callback());
+  progress.finish();
+  // Written only once the whole video is tracked, so a failure leaves no tracks file.
+  vtrack::apps::write_mot(output, rows);
+  std::cout << "wrote " << rows.size() << " track rows to " << output;
+  if (!render.empty()) std::cout << " and the annotated video to " << render;
+  std::cout << "\n";
   return 0;
 }
 
@@ -181,6 +277,21 @@ const std::vector<Command>& commands() {
        "  --closing K      side of the square closing y, 0 = off (default 3)\n"
        "  --threads T      0 = OpenCV default, 1 = single thread (default 0)",
        run_bgs},
+      {"track", "track people in a video: KDE background + multi-Bernoulli TBD filter",
+       "vtrack track VIDEO --out TRACKS [--method mb] [--render OUT.mp4] [--config FILE]\n"
+       "                    [--seed N] [--set name=value ...]\n\n"
+       "  VIDEO            a video file or a folder of images\n"
+       "  --out TRACKS     MOTChallenge text: frame,id,x,y,w,h,conf,-1,-1,-1 (frames from 1,\n"
+       "                   conf = existence probability); written only when tracking succeeded\n"
+       "  --method mb      the multi-Bernoulli track-before-detect tracker (mb-tbd paper)\n"
+       "  --render FILE    also write the video with each track's box in its own colour\n"
+       "  --config FILE    YAML or JSON with sections seed, background (n_samples, period,\n"
+       "                   sigma_r, sigma_g, sigma_I, closing, threads) and tracker (delta_f,\n"
+       "                   delta_b, closing_size, sigma_x, ..., see vtrack.MultiBernoulliTracker\n"
+       "                   .default_params() in Python)\n"
+       "  --seed N         random seed (default 0): the same seed gives the same tracks\n"
+       "  --set name=value override one background or tracker parameter (repeatable)",
+       run_track},
   };
   return table;
 }

@@ -55,6 +55,7 @@ from ._core import (
     resample,
     Rng,
     Track,
+    track_video,
     VideoInfo,
     __version__,
 )
@@ -99,6 +100,7 @@ __all__ = [
     "synthetic",
     "Track",
     "track_detections",
+    "track_video",
     "VideoInfo",
     "__version__",
 ]

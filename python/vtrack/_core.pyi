@@ -298,3 +298,13 @@ class VideoInfo:
     def is_image_folder(self) -> bool: ...
 
 def probe_video(path: Union[str, PathLike[str]]) -> VideoInfo: ...
+
+def track_video(
+    path: Union[str, PathLike[str]],
+    method: Literal["mb"] = "mb",
+    *,
+    seed: int = 0,
+    render: Optional[Union[str, PathLike[str]]] = None,
+    background: Optional[Dict[str, Any]] = None,
+    **tracker: Any,
+) -> npt.NDArray[np.float64]: ...

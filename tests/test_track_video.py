@@ -1,0 +1,120 @@
+"""vtrack's main job end to end: video -> KDE background -> multi-Bernoulli TBD -> MOT tracks,
+through Python (vtrack.track_video) and the CLI (vtrack track), on synthetic scenes with exact
+ground truth."""
+
+import json
+
+import numpy as np
+import pytest
+
+import vtrack
+from vtrack.evaluate import evaluate
+from vtrack.mot import read_mot
+from vtrack.synthetic import make_scene
+
+# The people of these 320 x 240 scenes are 14-24 px wide and 36-60 px tall; the tracker's size
+# prior defaults are for PETS09 at 768 x 576, so the scenes state their own.
+SIZE_PRIOR = dict(width_mean=19.0, width_std=4.0, width_min=10.0, width_max=30.0,
+                  height_mean=48.0, height_std=8.0, height_min=30.0, height_max=70.0)
+
+
+@pytest.fixture(scope="module")
+def scenes(tmp_path_factory):
+    """Two seeded scenes of 3 people crossing, written as MJPG videos. Illumination drifts by 2 %
+    (the KDE's stack spans 100 frames; see the note on illumination in the issue)."""
+    cv2 = pytest.importorskip("cv2")
+    out = {}
+    for seed in (3, 4):
+        scene = make_scene(320, 240, n_frames=150, n_people=3, seed=seed,
+                           illumination_amplitude=0.02)
+        path = tmp_path_factory.mktemp(f"scene{seed}") / "scene.avi"
+        writer = cv2.VideoWriter(str(path), cv2.VideoWriter_fourcc(*"MJPG"), 10.0, (320, 240))
+        for k in range(len(scene)):
+            writer.write(scene.frame(k))
+        writer.release()
+        out[seed] = (scene, path)
+    return out
+
+
+@pytest.mark.parametrize("seed", [3, 4])
+def test_tracks_synthetic_people_end_to_end(scenes, seed):
+    scene, path = scenes[seed]
+    rows = vtrack.track_video(path, seed=0, **SIZE_PRIOR)
+    assert rows.shape[1] == 10 and rows[:, 0].min() >= 1
+    metrics = evaluate(scene.gt_rows(), rows)
+    # Measured 0.94-0.95 / 0.96-0.98: what is lost is the 2-4 frames a person needs to become
+    # confirmed after entering (and to die after leaving). One lost or duplicated person for a
+    # third of the scene costs ~0.15 MOTA, so these bounds catch a real regression.
+    assert metrics["MOTA"] > 0.85, metrics
+    assert metrics["IDF1"] > 0.9, metrics
+    assert metrics["IDSW"] <= 1, metrics
+    # The right number of people at the end, after the entries.
+    last = len(scene) - 1
+    assert np.sum(rows[:, 0] == last + 1) == scene.count(last)
+
+
+def test_same_seed_same_tracks_and_parameters_are_checked(scenes):
+    _, path = scenes[3]
+    a = vtrack.track_video(path, seed=5, **SIZE_PRIOR)
+    b = vtrack.track_video(path, seed=5, background={"threads": 1}, **SIZE_PRIOR)
+    np.testing.assert_array_equal(a, b)
+    with pytest.raises(TypeError, match="no_such"):
+        vtrack.track_video(path, no_such=1)
+    with pytest.raises(TypeError, match="unknown background parameter 'bandwidth'"):
+        vtrack.track_video(path, background={"bandwidth": 0.1})
+    with pytest.raises(ValueError, match="sigma_x"):
+        vtrack.track_video(path, sigma_x=-1.0)
+    with pytest.raises(ValueError, match="method"):
+        vtrack.track_video(path, method="glmb")
+    with pytest.raises(OSError, match="no such file"):
+        vtrack.track_video(path.parent / "missing.avi")
+
+
+def test_cli_track_writes_tracks_and_render(vtrack_cli, scenes, tmp_path):
+    scene, path = scenes[4]
+    config = tmp_path / "params.yml"
+    config.write_text("%YAML:1.0\nseed: 2\ntracker:\n" +
+                      "".join(f"  {k}: {v}\n" for k, v in SIZE_PRIOR.items()))
+    out, render = tmp_path / "tracks.txt", tmp_path / "tracks.avi"
+    result = vtrack_cli("track", path, "--out", out, "--render", render, "--config", config)
+    assert result.returncode == 0, result.stderr
+    assert "track: frame 150/150" in result.stderr  # progress on stderr
+    rows = read_mot(out)
+    np.testing.assert_allclose(rows, vtrack.track_video(path, seed=2, **SIZE_PRIOR), atol=0.006)
+    assert vtrack.probe_video(render).frame_count == 150
+    # JSON config and --set give the same parameters.
+    config_json = tmp_path / "params.json"
+    config_json.write_text(json.dumps({"seed": 2, "tracker": {"width_mean": 19.0}}))
+    out2 = tmp_path / "tracks2.txt"
+    sets = [a for k, v in SIZE_PRIOR.items() if k != "width_mean" for a in ("--set", f"{k}={v}")]
+    result = vtrack_cli("track", path, "--out", out2, "--config", config_json, *sets)
+    assert result.returncode == 0, result.stderr
+    assert out2.read_text() == out.read_text()
+
+
+def test_cli_track_errors_leave_nothing_behind(vtrack_cli, scenes, write_video, tmp_path):
+    from conftest import random_frames
+
+    _, path = scenes[3]
+    out, render = tmp_path / "t.txt", tmp_path / "r.avi"
+    truncated = write_video(random_frames(40), name="truncated.avi")
+    truncated.write_bytes(truncated.read_bytes()[: truncated.stat().st_size // 2])
+    bad_config = tmp_path / "bad.yml"
+    bad_config.write_text("%YAML:1.0\ntracker:\n  no_such: 1\n")
+    cases = [
+        (("track", tmp_path / "missing.avi", "--out", out), 1, "no such file"),
+        (("track", truncated, "--out", out, "--render", render), 1, "frame"),
+        (("track", path, "--out", out, "--set", "sigma_x=-1"), 2, "sigma_x"),
+        (("track", path, "--out", out, "--set", "nope=1"), 2, "nope"),
+        (("track", path, "--out", out, "--method", "glmb"), 2, "method"),
+        (("track", path), 2, "--out"),
+        (("track", path, "--out", out, "--render", tmp_path / "r.txt"), 2, "render"),
+        (("track", path, "--out", out, "--config", bad_config), 1, "no_such"),
+        (("track", path, "--out", out, "--config", tmp_path / "none.yml"), 1, "config"),
+    ]
+    for args, status, message in cases:
+        result = vtrack_cli(*args)
+        assert result.returncode == status, (args, result.stderr)
+        assert result.stderr.splitlines()[-1].startswith("vtrack: error: "), (args, result.stderr)
+        assert message in result.stderr, (args, result.stderr)
+        assert sorted(p.name for p in tmp_path.iterdir()) == ["bad.yml", "truncated.avi"], args
