@@ -118,3 +118,21 @@ def test_cli_track_errors_leave_nothing_behind(vtrack_cli, scenes, write_video, 
         assert result.stderr.splitlines()[-1].startswith("vtrack: error: "), (args, result.stderr)
         assert message in result.stderr, (args, result.stderr)
         assert sorted(p.name for p in tmp_path.iterdir()) == ["bad.yml", "truncated.avi"], args
+
+
+def test_contact_sheet_tiles_frames_with_boxes(scenes, tmp_path):
+    from vtrack.contact_sheet import _colour, contact_sheet, main
+
+    scene, path = scenes[3]
+    tracks = np.array([[100, 7, 40, 50, 30, 60, 1, -1, -1, -1]], float)
+    sheet = contact_sheet(path, tracks, frames=[1, 50, 100, 120], gt=scene.gt_rows(), columns=2,
+                          scale=0.5)
+    assert sheet.shape == (2 * 120, 2 * 160, 3)
+    # Frame 100 is the third tile (bottom left): its box edge is drawn in label 7's colour.
+    tile = sheet[120:, :160]
+    assert (tile == np.array(_colour(7), np.uint8)).all(axis=-1).any()
+    out = tmp_path / "sheet.png"
+    tracks_file = tmp_path / "t.txt"
+    vtrack.mot.write_mot(tracks_file, tracks)
+    assert main(["--video", str(path), "--tracks", str(tracks_file), "--out", str(out)]) == 0
+    assert out.exists() and not (tmp_path / "sheet.partial.png").exists()
