@@ -53,6 +53,9 @@ cv::Mat gray_image(const py::handle& obj, const char* name, py::array& keep);
 // `rng` may be a vtrack.Rng (used and advanced in place) or an int seed (a fresh Rng).
 core::Rng& rng_from(const py::handle& rng, core::Rng& storage);
 
+// The Python type name of `value`, for error messages.
+std::string type_name(const py::handle& value);
+
 // A Python value for the parameter `name` whose default is `kind` (bool, int, real or str):
 // TypeError naming the parameter when the value is of another kind.
 apps::ParameterValue parameter_from_python(const std::string& name, const py::handle& value,

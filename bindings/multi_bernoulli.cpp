@@ -11,44 +11,12 @@ namespace {
 
 using filters::MultiBernoulliParams;
 
-std::string type_name(const py::handle& v) {
-  return py::str(py::type::of(v).attr("__name__")).cast<std::string>();
-}
-
 int as_int(const std::string& name, const py::handle& v) {
   if (py::isinstance<py::bool_>(v) || !PyIndex_Check(v.ptr())) {
     throw py::type_error(name + " must be an int, got " + type_name(v));
   }
   return py::int_(py::reinterpret_borrow<py::object>(v)).cast<int>();
 }
-
-}  // namespace
-
-apps::ParameterValue parameter_from_python(const std::string& name, const py::handle& v,
-                                           const apps::ParameterValue& kind) {
-  // The default value's alternative says what the parameter takes.
-  if (std::holds_alternative<bool>(kind)) {
-    if (!py::isinstance<py::bool_>(v)) throw py::type_error(name + " must be a bool, got " + type_name(v));
-    return v.cast<bool>();
-  }
-  if (std::holds_alternative<long long>(kind)) {
-    if (py::isinstance<py::bool_>(v) || !PyIndex_Check(v.ptr())) {
-      throw py::type_error(name + " must be an int, got " + type_name(v));
-    }
-    return py::int_(py::reinterpret_borrow<py::object>(v)).cast<long long>();
-  }
-  if (std::holds_alternative<std::string>(kind)) {
-    if (!py::isinstance<py::str>(v)) throw py::type_error(name + " must be a str, got " + type_name(v));
-    return v.cast<std::string>();
-  }
-  // Numbers as Python and NumPy give them (int, float, np.int64, np.float32...), never bool.
-  if (py::isinstance<py::bool_>(v) || py::isinstance<py::str>(v) || !PyNumber_Check(v.ptr())) {
-    throw py::type_error(name + " must be a number, got " + type_name(v));
-  }
-  return py::float_(py::reinterpret_borrow<py::object>(v)).cast<double>();
-}
-
-namespace {
 
 MultiBernoulliParams params_from(const py::kwargs& kwargs) {
   MultiBernoulliParams p;

@@ -6,6 +6,7 @@
 #include <functional>
 #include <iostream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <unistd.h>
@@ -58,32 +59,31 @@ int run_info(const std::vector<std::string>& args) {
 }
 
 // Strict number parsing: the whole text must be the number.
-int parse_int(const std::string& option, const std::string& text) {
+template <typename Number>
+Number parse_number(const std::string& option, const std::string& text, const char* what) {
   std::size_t used = 0;
-  int value = 0;
+  Number value{};
   try {
-    value = std::stoi(text, &used);
+    if constexpr (std::is_integral_v<Number>) {
+      value = std::stoi(text, &used);
+    } else {
+      value = std::stod(text, &used);
+    }
   } catch (const std::exception&) {
     used = 0;
   }
   if (used == 0 || used != text.size()) {
-    throw UsageError(option + " expects an integer, got '" + text + "'");
+    throw UsageError(option + " expects " + what + ", got '" + text + "'");
   }
   return value;
 }
 
+int parse_int(const std::string& option, const std::string& text) {
+  return parse_number<int>(option, text, "an integer");
+}
+
 double parse_double(const std::string& option, const std::string& text) {
-  std::size_t used = 0;
-  double value = 0;
-  try {
-    value = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size()) {
-    throw UsageError(option + " expects a number, got '" + text + "'");
-  }
-  return value;
+  return parse_number<double>(option, text, "a number");
 }
 
 // Progress on stderr every 25 frames: one line rewritten in place on a terminal, otherwise one

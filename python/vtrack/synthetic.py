@@ -62,18 +62,23 @@ class SyntheticScene:
         v = (np.arange(p.h) + 0.5) / p.h * 2 - 1
         return (u[None, :] ** 4 + v[:, None] ** 4) <= 1.0
 
+    def _visible(self, k: int):
+        """(person, box (x, y, w, h), clipped corners (x0, y0, x1, y1)) of the people present at
+        frame k with some part inside the image."""
+        for p in self.people:
+            if k < p.enter:
+                continue
+            x, y, w, h = p.box(k)
+            x0, y0 = max(x, 0), max(y, 0)
+            x1, y1 = min(x + w, self.width), min(y + h, self.height)
+            if x1 > x0 and y1 > y0:
+                yield p, (x, y, w, h), (x0, y0, x1, y1)
+
     def _placements(self, k: int):
         """(person, visible slice of box, slice of sprite) for the people present at frame k,
         far (small bottom y) first so nearer people are drawn over them."""
         out = []
-        for p in self.people:
-            if k < p.enter:
-                continue
-            xi, yi, w, h = p.box(k)
-            x0, y0 = max(xi, 0), max(yi, 0)
-            x1, y1 = min(xi + w, self.width), min(yi + h, self.height)
-            if x1 <= x0 or y1 <= y0:
-                continue
+        for p, (xi, yi, w, h), (x0, y0, x1, y1) in self._visible(k):
             out.append((yi + h, p, (slice(y0, y1), slice(x0, x1)),
                         (slice(y0 - yi, y1 - yi), slice(x0 - xi, x1 - xi))))
         out.sort(key=lambda item: item[0])
@@ -105,15 +110,9 @@ class SyntheticScene:
         """Ground-truth rows (id, x, y, w, h) of frame k: boxes clipped to the image, for the
         people with at least `min_visible` of their box inside the image."""
         rows = []
-        for p in self.people:
-            if k < p.enter:
-                continue
-            x, y, w, h = p.box(k)
-            x0, y0 = max(x, 0), max(y, 0)
-            x1, y1 = min(x + w, self.width), min(y + h, self.height)
-            if x1 <= x0 or y1 <= y0 or (x1 - x0) * (y1 - y0) < self.min_visible * w * h:
-                continue
-            rows.append((p.id, x0, y0, x1 - x0, y1 - y0))  # clipped to the image
+        for p, (_, _, w, h), (x0, y0, x1, y1) in self._visible(k):
+            if (x1 - x0) * (y1 - y0) >= self.min_visible * w * h:
+                rows.append((p.id, x0, y0, x1 - x0, y1 - y0))  # clipped to the image
         return np.asarray(rows, np.float64).reshape(-1, 5)
 
     def gt_rows(self) -> np.ndarray:
