@@ -41,7 +41,7 @@ with the calibration fitted on 1-397, as in the table; "self-cal" fits and score
 | delta_f .05 / .05 + delta_b 2e-3 / .03 + delta_b 2e-3           | 0.09 / 0.18 / 0.03  |                 |
 | delta_b 2e-3, closing 5                                        | 0.25                |                 |
 | size prior 30 x 85 (std 8 x 20, max 64 x 150) = P               | -0.04               |                 |
-| P, closing 5, delta_b 1.5e-3 / 2e-3                            | 0.22 / 0.35         | - / 0.29 / 0.29 |
+| P, closing 5, delta_b 1.5e-3 / 2e-3                            | 0.22 / 0.35         | (2e-3) 0.29 / 0.29 |
 | P, closing 5, delta_b 2e-3, birth log-lik -3 (new defaults) = D | 0.41                | 0.32 / 0.27     |
 | D with delta_b 1.5e-3 / 2.5e-3; closing 7                      |                     | 0.18, 0.31; 0.24|
 | D with delta_f .07 / .15 / .2 / .3 (delta_b 3e-3)              |                     | 0.28 / 0.10 / -0.23 / -0.42 |
