@@ -44,6 +44,8 @@ bench: $(VENV)/.vtrack-installed $(VENV)/.bench-deps $(VIDEO)
 	$(PY) benchmarks/bgs.py
 	$(PY) benchmarks/bgs_quality.py --out $(DEMO_OUT)/bgs_contact_sheet.png
 	$(PY) benchmarks/multi_bernoulli.py
+	$(PY) benchmarks/pets09.py
+	$(PY) benchmarks/track_video.py
 
 build: $(VENV)/.vtrack-installed
 
@@ -60,8 +62,9 @@ $(VENV)/.dev-deps: requirements/dev.txt requirements/eval.txt | $(BUILD)/.system
 	$(PY) -m pip install --quiet --no-deps -r requirements/eval.txt
 	touch $@
 
-$(VENV)/.bench-deps: requirements/bench.txt $(VENV)/.dev-deps
+$(VENV)/.bench-deps: requirements/bench.txt requirements/bench-nodeps.txt $(VENV)/.dev-deps
 	$(PY) -m pip install --quiet -r requirements/bench.txt || echo "some benchmark peers failed to install; their rows will be skipped"
+	$(PY) -m pip install --quiet --no-deps -r requirements/bench-nodeps.txt || echo "sort-track failed to install; the PETS09 baseline will be skipped"
 	touch $@
 
 # Build with the persistent build directory (incremental), C++ tests included, then install the
