@@ -29,6 +29,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(__file__))
 from _table import print_table  # noqa: E402
+from multi_bernoulli import time_tracker  # noqa: E402  (the same step timer)
 
 import vtrack  # noqa: E402
 from vtrack.synthetic import make_scene, render_y  # noqa: E402
@@ -78,17 +79,8 @@ def step_scaling(n_people, max_particles, frames=30):
     rng = np.random.default_rng(0)
     warm = 40
     ys = [render_y(scene.mask(k), rng) for k in range(warm + frames)]
-    tracker = vtrack.MultiBernoulliTracker((768, 576), seed=0, max_particles=max_particles)
-    times, tracks, particles = [], [], []
-    for k, y in enumerate(ys):
-        t0 = time.perf_counter()
-        out = tracker.step(y)
-        dt = time.perf_counter() - t0
-        if k >= warm:
-            times.append(dt)
-            tracks.append(len(out))
-            particles.append(sum(len(c.weights) for c in tracker.components))
-    return median(times), int(median(tracks)), int(median(particles)), int(scene.count(warm))
+    seconds, particles, tracks = time_tracker(ys, warm, max_particles=max_particles)
+    return seconds, tracks, particles, int(scene.count(warm))
 
 
 def main(argv=None) -> int:

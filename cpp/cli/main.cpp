@@ -119,18 +119,30 @@ class ProgressLine {
   bool printed_ = false;
 };
 
-int run_bgs(const std::vector<std::string>& args) {
-  std::string input, output;
-  vtrack::image::KdeBackgroundParams params;
+// Walks a subcommand's arguments: the one positional argument is the input; every option takes
+// a value, handed to `option(name, value)`. Returns the input ("" when absent).
+std::string walk_arguments(const std::string& command, const std::vector<std::string>& args,
+                           const std::function<void(const std::string&, const std::string&)>& option) {
+  std::string input;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     if (a.empty() || a[0] != '-') {
-      if (!input.empty()) throw UsageError("bgs takes one VIDEO, got '" + input + "' and '" + a + "'");
+      if (!input.empty()) {
+        throw UsageError(command + " takes one VIDEO, got '" + input + "' and '" + a + "'");
+      }
       input = a;
       continue;
     }
     if (i + 1 >= args.size()) throw UsageError("option " + a + " needs a value");
-    const std::string& value = args[++i];
+    option(a, args[++i]);
+  }
+  return input;
+}
+
+int run_bgs(const std::vector<std::string>& args) {
+  std::string output;
+  vtrack::image::KdeBackgroundParams params;
+  const std::string input = walk_arguments("bgs", args, [&](const std::string& a, const std::string& value) {
     if (a == "--out") {
       output = value;
     } else if (a == "--samples") {
@@ -159,7 +171,7 @@ int run_bgs(const std::vector<std::string>& args) {
     } else {
       throw UsageError("unknown option '" + a + "'");
     }
-  }
+  });
   if (input.empty()) throw UsageError("bgs needs a VIDEO (or image folder)");
   if (output.empty()) throw UsageError("bgs needs --out OUT (a folder, or a .avi/.mp4/.mkv file)");
   try {
@@ -193,19 +205,11 @@ vtrack::apps::ParameterValue parse_value(const std::string& text) {
 }
 
 int run_track(const std::vector<std::string>& args) {
-  std::string input, output, render, method = "mb";
+  std::string output, render, method = "mb";
   std::vector<std::string> settings;
   std::string config;
   long long seed = -1;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    if (a.empty() || a[0] != '-') {
-      if (!input.empty()) throw UsageError("track takes one VIDEO, got '" + input + "' and '" + a + "'");
-      input = a;
-      continue;
-    }
-    if (i + 1 >= args.size()) throw UsageError("option " + a + " needs a value");
-    const std::string& value = args[++i];
+  const std::string input = walk_arguments("track", args, [&](const std::string& a, const std::string& value) {
     if (a == "--out") {
       output = value;
     } else if (a == "--method") {
@@ -222,7 +226,7 @@ int run_track(const std::vector<std::string>& args) {
     } else {
       throw UsageError("unknown option '" + a + "'");
     }
-  }
+  });
   if (method != "mb") throw UsageError("--method must be 'mb' (got '" + method + "')");
   if (input.empty()) throw UsageError("track needs a VIDEO (or image folder)");
   if (output.empty()) throw UsageError("track needs --out TRACKS (MOTChallenge text)");
