@@ -1,10 +1,11 @@
 #include "vtrack/models/tbd_likelihood.hpp"
 
+#include "vtrack/image/morphology.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <string>
 
-#include <opencv2/imgproc.hpp>
 
 #include "vtrack/core/errors.hpp"
 
@@ -77,14 +78,10 @@ void TbdLikelihood::set_image(const cv::Mat& y) {
       }
     }
   }
-  if (params_.closing_size > 1) {
-    const cv::Mat element = cv::getStructuringElement(
-        cv::MORPH_RECT, cv::Size(params_.closing_size, params_.closing_size));
-    cv::morphologyEx(y, closed_, cv::MORPH_CLOSE, element, cv::Point(-1, -1), 1,
-                     cv::BORDER_REPLICATE);
-  } else {
-    y.copyTo(closed_);
-  }
+  // The background model's separable closing (image/morphology.hpp): equal to cv::morphologyEx
+  // (a max/min over a replicated border equals one over the pixels inside), single-threaded
+  // because the tracker runs one per camera.
+  image::close_square(y, closed_, params_.closing_size, 1, &closing_workspace_);
   integral_.compute(closed_);
   inv_m_delta_b_ = 1.0 / (static_cast<double>(y.total()) * params_.delta_b);
 }

@@ -107,6 +107,7 @@ class TbdLikelihood {
   double log_zeta_f_;
   double inv_m_delta_b_ = 0.0;  // 1 / (m delta_B), set with the image
   cv::Mat closed_;
+  cv::Mat closing_workspace_;  // the intermediate dilation, reused across frames
   image::IntegralImage integral_;
 };
 
