@@ -1,10 +1,14 @@
-// Binding of vtrack::filters::GaussianGlmbFilter as vtrack.GlmbTracker.
+// Binding of the delta-GLMB filters (vtrack::filters::GaussianGlmbFilter and ParticleGlmbFilter)
+// as one Python class, vtrack.GlmbTracker: the track density is chosen by the keywords.
 #include <optional>
 #include <string>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 #include "common.hpp"
 #include "vtrack/filters/glmb.hpp"
+#include "vtrack/filters/particle_glmb.hpp"
 
 namespace vtrack::bindings {
 namespace {
@@ -13,6 +17,20 @@ using filters::GaussianBirth;
 using filters::GaussianGlmbFilter;
 using filters::GlmbEstimate;
 using filters::GlmbParams;
+using filters::ParticleGlmbFilter;
+
+// The Python object: one filter or the other, dispatched once per call (not per particle).
+struct GlmbTracker {
+  std::variant<GaussianGlmbFilter, ParticleGlmbFilter> filter;
+  template <class F>
+  decltype(auto) visit(F&& f) {
+    return std::visit(std::forward<F>(f), filter);
+  }
+  template <class F>
+  decltype(auto) visit(F&& f) const {
+    return std::visit(std::forward<F>(f), filter);
+  }
+};
 
 // births: a sequence of (existence, mean, cov) triples.
 std::vector<GaussianBirth> births_from(const py::handle& obj) {
@@ -53,9 +71,9 @@ void bind_glmb(py::module_& m) {
       });
 
   const GlmbParams defaults;
-  py::class_<GaussianGlmbFilter>(m, "GlmbTracker", R"doc(
-Labelled multi-object tracker: the delta-GLMB filter with Gaussian track densities, in the joint
-prediction-update form of Vo, Vo & Hoang (IEEE TSP 2017) with Murty's ranked assignments
+  const filters::ParticleParams particle_defaults;
+  py::class_<GlmbTracker>(m, "GlmbTracker", R"doc(
+Labelled multi-object tracker: the delta-GLMB filter, in the joint prediction-update form of Vo, Vo & Hoang (IEEE TSP 2017) with Murty's ranked assignments
 (rgbd-glmb-switching-observation eqs. 5-8).
 
 motion: LinearGaussianMotion; observation: LinearGaussianObservation; births: a list of
@@ -77,9 +95,17 @@ Keyword parameters (defaults: the standard GLMB scenario's):
                         that z was assigned to a track (Reuter et al.'s LMB adaptive birth)
   adaptive_birth_rate   expected number of adaptive births per scan (lambda_B)
   adaptive_birth_max_existence  cap on one detection's birth existence
+Track densities: Gaussian (Kalman) by default. Particles when `particles` or `depth_model` is
+given (the paper's particle implementation):
+  particles             particles per track (default 500 with a depth model)
+  depth_model           a DepthLikelihood: step(detections, depth) then applies the switching
+                        observation model -- a track a hypothesis leaves undetected is scored and
+                        reweighted by the depth image (eq. 4) instead of (1 - p_D) alone
+  resample_threshold    systematic resampling when N_eff < resample_threshold * particles
+  seed                  the particle filter's random engine (same seed, same tracks)
 
-Deterministic (no random numbers). step() releases the GIL; one tracker must not be stepped from
-two threads at once.
+The Gaussian filter is deterministic (no random numbers). step() releases the GIL; one tracker
+must not be stepped from two threads at once.
 )doc")
       .def(py::init([](const models::LinearGaussianMotion& motion,
                        const models::LinearGaussianObservation& observation,
@@ -87,7 +113,10 @@ two threads at once.
                        double detection_probability, double clutter_intensity,
                        int hypothesis_budget, int max_hypotheses, double prune_threshold,
                        double gate_threshold, const py::handle& adaptive_birth_cov,
-                       double adaptive_birth_rate, double adaptive_birth_max_existence) {
+                       double adaptive_birth_rate, double adaptive_birth_max_existence,
+                       std::optional<int> particles,
+                       std::optional<models::DepthLikelihood> depth_model,
+                       double resample_threshold, std::uint64_t seed) {
              GlmbParams p;
              p.survival_probability = survival_probability;
              p.detection_probability = detection_probability;
@@ -103,7 +132,15 @@ two threads at once.
              }
              p.adaptive_birth.expected_births = adaptive_birth_rate;
              p.adaptive_birth.max_existence = adaptive_birth_max_existence;
-             return GaussianGlmbFilter(motion, observation, births_from(births), p);
+             if (!particles && !depth_model) {
+               return GlmbTracker{GaussianGlmbFilter(motion, observation, births_from(births), p)};
+             }
+             filters::ParticleParams pp;
+             if (particles) pp.particles = *particles;
+             pp.resample_threshold = resample_threshold;
+             pp.seed = seed;
+             return GlmbTracker{ParticleGlmbFilter(motion, observation, births_from(births), p, pp,
+                                                   std::move(depth_model))};
            }),
            py::arg("motion"), py::arg("observation"), py::arg("births"), py::kw_only(),
            py::arg("survival_probability") = defaults.survival_probability,
@@ -115,43 +152,96 @@ two threads at once.
            py::arg("gate_threshold") = defaults.gate_threshold,
            py::arg("adaptive_birth_cov") = py::none(),
            py::arg("adaptive_birth_rate") = defaults.adaptive_birth.expected_births,
-           py::arg("adaptive_birth_max_existence") = defaults.adaptive_birth.max_existence)
+           py::arg("adaptive_birth_max_existence") = defaults.adaptive_birth.max_existence,
+           py::arg("particles") = py::none(), py::arg("depth_model") = py::none(),
+           py::arg("resample_threshold") = particle_defaults.resample_threshold,
+           py::arg("seed") = particle_defaults.seed)
       .def(
           "step",
-          [](GaussianGlmbFilter& f, const py::handle& detections) {
+          [](GlmbTracker& t, const py::handle& detections, const py::handle& depth) {
             auto z = as_matrix(detections, "detections");
-            const auto z_dim = f.z_dim();
+            const auto z_dim = t.visit([](const auto& f) { return f.z_dim(); });
             if (z.shape(1) != z_dim && z.shape(0) > 0) {
               throw py::value_error("detections must have shape (M, " + std::to_string(z_dim) +
                                     "), got (" + std::to_string(z.shape(0)) + ", " +
                                     std::to_string(z.shape(1)) + ")");
             }
+            py::array keep;
+            cv::Mat image;
+            if (!depth.is_none()) {
+              if (!std::holds_alternative<ParticleGlmbFilter>(t.filter)) {
+                throw py::value_error("depth needs a tracker built with a depth_model");
+              }
+              image = gray_image(depth, "depth", keep);
+              if (image.depth() == CV_8U) {
+                throw py::type_error("depth must be float32 or float64 metres, got uint8");
+              }
+            }
             {
               py::gil_scoped_release release;
               // Row-major M x z_dim is column-major z_dim x M: one detection per column.
-              f.step(Eigen::Map<const Eigen::MatrixXd>(z.data(), z_dim, z.shape(0)));
+              const Eigen::Map<const Eigen::MatrixXd> columns(z.data(), z_dim, z.shape(0));
+              t.visit([&](auto& f) {
+                if constexpr (std::is_same_v<std::decay_t<decltype(f)>, ParticleGlmbFilter>) {
+                  f.step(columns, image.empty() ? nullptr : &image);
+                } else {
+                  f.step(columns);
+                }
+              });
             }
-            return f.estimates();
+            return t.visit([](const auto& f) { return f.estimates(); });
           },
-          py::arg("detections"), R"doc(
+          py::arg("detections"), py::arg("depth") = py::none(), R"doc(
 One joint prediction-update with the detections of the next scan, an (M, z_dim) array (M may be
-0), and the estimates at that scan (as estimates()). Raises TypeError for a non-numeric dtype and
-ValueError for a wrong shape or NaN/inf.
+0), and the estimates at that scan (as estimates()). `depth` (particle tracker with a
+depth_model only): the scan's background-subtracted metric depth image, H x W float32/float64
+metres of the depth model's camera, 0 where there is no target or no reading; tracks left
+undetected are then scored by it (the switching model). Without it a step is detection-only.
+Raises TypeError for a non-numeric dtype and ValueError for a wrong shape or NaN/inf.
 )doc")
-      .def("estimates", &GaussianGlmbFilter::estimates, R"doc(
+      .def(
+          "estimates", [](const GlmbTracker& t) { return t.visit([](const auto& f) { return f.estimates(); }); },
+          R"doc(
 The labelled estimates at the current scan, a list of GlmbEstimate: the tracks of the most
-probable hypothesis with the MAP cardinality.
+probable hypothesis with the MAP cardinality (particle tracks: weighted mean and covariance).
 )doc")
-      .def("cardinality_distribution", &GaussianGlmbFilter::cardinality_distribution,
-           "P(n targets) for n = 0 .. the largest hypothesis size, a float64 array summing to 1.")
-      .def_property_readonly("map_cardinality", &GaussianGlmbFilter::map_cardinality,
-                             "The most probable number of targets.")
-      .def_property_readonly("hypothesis_count", &GaussianGlmbFilter::hypothesis_count,
-                             "Number of hypotheses kept after the last step.")
-      .def_property_readonly("track_count", &GaussianGlmbFilter::track_count,
-                             "Number of distinct track histories the hypotheses share.")
-      .def_property_readonly("time", &GaussianGlmbFilter::time,
-                             "Number of scans processed (the current scan index).");
+      .def(
+          "cardinality_distribution",
+          [](const GlmbTracker& t) {
+            return t.visit([](const auto& f) { return f.cardinality_distribution(); });
+          },
+          "P(n targets) for n = 0 .. the largest hypothesis size, a float64 array summing to 1.")
+      .def_property_readonly(
+          "map_cardinality",
+          [](const GlmbTracker& t) { return t.visit([](const auto& f) { return f.map_cardinality(); }); },
+          "The most probable number of targets.")
+      .def_property_readonly(
+          "hypothesis_count",
+          [](const GlmbTracker& t) { return t.visit([](const auto& f) { return f.hypothesis_count(); }); },
+          "Number of hypotheses kept after the last step.")
+      .def_property_readonly(
+          "track_count",
+          [](const GlmbTracker& t) { return t.visit([](const auto& f) { return f.track_count(); }); },
+          "Number of distinct track histories the hypotheses share.")
+      .def_property_readonly(
+          "time", [](const GlmbTracker& t) { return t.visit([](const auto& f) { return f.time(); }); },
+          "Number of scans processed (the current scan index).")
+      .def_property_readonly(
+          "particles",
+          [](const GlmbTracker& t) -> std::optional<int> {
+            if (const auto* f = std::get_if<ParticleGlmbFilter>(&t.filter)) {
+              return f->particle_params().particles;
+            }
+            return std::nullopt;
+          },
+          "Particles per track, or None for Gaussian (Kalman) track densities.")
+      .def_property_readonly(
+          "has_depth_model",
+          [](const GlmbTracker& t) {
+            const auto* f = std::get_if<ParticleGlmbFilter>(&t.filter);
+            return f && f->has_depth_model();
+          },
+          "Whether step() accepts a depth image (the switching observation model).");
 }
 
 }  // namespace vtrack::bindings

@@ -1,5 +1,9 @@
-// Bindings of vtrack::models: linear-Gaussian motion and observation models.
+// Bindings of vtrack::models: linear-Gaussian motion and observation models, the depth likelihood.
+#include <optional>
+#include <utility>
+
 #include "common.hpp"
+#include "vtrack/models/depth_likelihood.hpp"
 #include "vtrack/models/linear_gaussian.hpp"
 
 namespace vtrack::bindings {
@@ -62,6 +66,111 @@ with noise covariance R (axes x axes). The defaults are the standard GLMB scenar
       .def("__repr__", [](const LinearGaussianObservation& o) {
         return "LinearGaussianObservation(z_dim=" + std::to_string(o.H.rows()) +
                ", x_dim=" + std::to_string(o.H.cols()) + ")";
+      });
+
+  using models::DepthLikelihood;
+  using models::DepthLikelihoodParams;
+  m.def("kinect_raw_to_depth", py::vectorize(&models::kinect_raw_to_depth), py::arg("raw"),
+        py::arg("fx") = 525.0, R"doc(
+Kinect raw depth to metres, rgbd-glmb-switching-observation eq. (3): T = 8 B fx / (W_max - w)
+with B = 0.075 m, W_max = 1084; fx is the IR camera's horizontal focal length in pixels.
+Raw values >= W_max, negative or NaN carry no reading and give 0. Scalars or arrays (float64).
+)doc");
+  m.def("kinect_depth_to_raw", py::vectorize(&models::kinect_depth_to_raw), py::arg("depth"),
+        py::arg("fx") = 525.0, R"doc(
+The inverse of kinect_raw_to_depth (unrounded), for simulating a sensor: w = W_max - 8 B fx / T.
+Depth <= 0, NaN, or nearer than the sensor minimum 8 B fx / W_max give 2047 (no reading).
+)doc");
+
+  const DepthLikelihoodParams depth_defaults;
+  py::class_<DepthLikelihood>(m, "DepthLikelihood", R"doc(
+The depth-intensity likelihood of rgbd-glmb-switching-observation eq. (4) for a pinhole camera:
+the secondary observation of GlmbTracker's switching model.
+
+Camera frame (metres): X right, Y down, D along the optical axis. A person at position (X, Y, D)
+(the centre of its bounding box, as eq. 2's detections) covers T(x), the rectangle of metric size
+person_size = (width, height) projected at depth D: centre (cx + fx X/D, cy + fy Y/D), size
+(fx width/D, fy height/D) pixels, rounded and clipped to the width x height image. On a
+background-subtracted metric depth image d (0 = background/no reading), the log ratio
+  tempering * sum_{i in T(x)} [log N(d_i; D, sigma_target) - log N(d_i; 0, sigma_background)]
+is computed in O(1) per state from integral images of d and d^2 (sigmas are standard deviations,
+metres). tempering in (0, 1] (1 = the paper's independent pixels) flattens a likelihood that
+treats every pixel as an independent observation; see models/depth_likelihood.hpp.
+fy defaults to fx, (cx, cy) to the image centre ((width - 1)/2, (height - 1)/2).
+)doc")
+      .def(py::init([](int width, int height, double fx, std::optional<double> fy,
+                       std::optional<double> cx, std::optional<double> cy,
+                       std::pair<double, double> person_size, double sigma_target,
+                       double sigma_background, double tempering, double min_depth) {
+             DepthLikelihoodParams p;
+             p.camera = {fx, fy.value_or(fx), cx.value_or(0.5 * (width - 1)),
+                         cy.value_or(0.5 * (height - 1)), width, height};
+             p.person_width = person_size.first;
+             p.person_height = person_size.second;
+             p.sigma_target = sigma_target;
+             p.sigma_background = sigma_background;
+             p.tempering = tempering;
+             p.min_depth = min_depth;
+             return DepthLikelihood(p);
+           }),
+           py::arg("width"), py::arg("height"), py::arg("fx"), py::arg("fy") = py::none(),
+           py::arg("cx") = py::none(), py::arg("cy") = py::none(), py::kw_only(),
+           py::arg("person_size") = std::make_pair(depth_defaults.person_width,
+                                                   depth_defaults.person_height),
+           py::arg("sigma_target") = depth_defaults.sigma_target,
+           py::arg("sigma_background") = depth_defaults.sigma_background,
+           py::arg("tempering") = depth_defaults.tempering,
+           py::arg("min_depth") = depth_defaults.min_depth)
+      .def(
+          "footprint",
+          [](const DepthLikelihood& d, const py::handle& position) {
+            auto x = as_vector(position, "position");
+            if (x.size() != 3) throw py::value_error("position must be (X, Y, D)");
+            const auto r = d.footprint(x.at(0), x.at(1), x.at(2));
+            return py::make_tuple(r.x, r.y, r.width, r.height);
+          },
+          py::arg("position"),
+          "T(x) as (x, y, width, height) pixels, clipped to the image ((0, 0, 0, 0) if empty).")
+      .def(
+          "log_ratio",
+          [](const DepthLikelihood& d, const py::handle& depth, const py::handle& positions) {
+            py::array keep;
+            const cv::Mat image = gray_image(depth, "depth", keep);
+            if (image.depth() == CV_8U) {
+              throw py::type_error("depth must be float32 or float64 metres, got uint8");
+            }
+            auto x = as_matrix(positions, "positions");
+            if (x.shape(1) != 3) throw py::value_error("positions must have shape (N, 3)");
+            Eigen::VectorXd out(x.shape(0));
+            {
+              py::gil_scoped_release release;
+              const auto frame = d.frame(image);
+              // Row-major N x 3 is column-major 3 x N.
+              d.log_ratio(frame, Eigen::Map<const Eigen::Matrix3Xd>(x.data(), 3, x.shape(0)), out);
+            }
+            return out;
+          },
+          py::arg("depth"), py::arg("positions"), R"doc(
+The tempered log ratio of eq. (4), log prod_{T(x)} phi_i / varphi_i times tempering, for each row
+(X, Y, D) of positions (N, 3), on the depth image (H x W float32/float64 metres).
+)doc")
+      .def_property_readonly("width", [](const DepthLikelihood& d) { return d.params().camera.width; })
+      .def_property_readonly("height", [](const DepthLikelihood& d) { return d.params().camera.height; })
+      .def_property_readonly("fx", [](const DepthLikelihood& d) { return d.params().camera.fx; })
+      .def_property_readonly("fy", [](const DepthLikelihood& d) { return d.params().camera.fy; })
+      .def_property_readonly("cx", [](const DepthLikelihood& d) { return d.params().camera.cx; })
+      .def_property_readonly("cy", [](const DepthLikelihood& d) { return d.params().camera.cy; })
+      .def_property_readonly("person_size", [](const DepthLikelihood& d) {
+        return std::make_pair(d.params().person_width, d.params().person_height);
+      })
+      .def_property_readonly("sigma_target", [](const DepthLikelihood& d) { return d.params().sigma_target; })
+      .def_property_readonly("sigma_background",
+                             [](const DepthLikelihood& d) { return d.params().sigma_background; })
+      .def_property_readonly("tempering", [](const DepthLikelihood& d) { return d.params().tempering; })
+      .def("__repr__", [](const DepthLikelihood& d) {
+        const auto& c = d.params().camera;
+        return "DepthLikelihood(" + std::to_string(c.width) + "x" + std::to_string(c.height) +
+               ", fx=" + std::to_string(c.fx) + ", tempering=" + std::to_string(d.params().tempering) + ")";
       });
 }
 

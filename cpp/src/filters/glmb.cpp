@@ -12,6 +12,7 @@
 #include "vtrack/core/errors.hpp"
 #include "vtrack/core/weights.hpp"
 #include "vtrack/filters/assign.hpp"
+#include "vtrack/filters/particle_glmb.hpp"
 
 namespace vtrack::filters {
 namespace {
@@ -27,10 +28,22 @@ void require_probability(double p, const char* name, bool allow_one = true) {
 
 }  // namespace
 
-GaussianGlmbFilter::GaussianGlmbFilter(models::LinearGaussianMotion motion,
-                                       models::LinearGaussianObservation observation,
-                                       std::vector<GaussianBirth> births, GlmbParams params)
-    : motion_(std::move(motion)),
+void GaussianTracks::log_detection_likelihoods(const Candidate& c,
+                                               const Eigen::Ref<const Eigen::MatrixXd>& z,
+                                               double gate,
+                                               Eigen::Ref<Eigen::RowVectorXd> out) const {
+  for (Eigen::Index j = 0; j < z.cols(); ++j) {
+    const double d2 = c.innovation.mahalanobis_squared(z.col(j));
+    out[j] = d2 <= gate ? c.innovation.log_likelihood(z.col(j)) : -kInf;
+  }
+}
+
+template <class Tracks>
+GlmbFilter<Tracks>::GlmbFilter(models::LinearGaussianMotion motion,
+                               models::LinearGaussianObservation observation,
+                               std::vector<GaussianBirth> births, GlmbParams params, Tracks tracks)
+    : tracks_model_(std::move(tracks)),
+      motion_(std::move(motion)),
       observation_(std::move(observation)),
       births_(std::move(births)),
       params_(params) {
@@ -88,7 +101,8 @@ GaussianGlmbFilter::GaussianGlmbFilter(models::LinearGaussianMotion motion,
   hypotheses_.push_back({{}, 0.0});  // no target, probability 1
 }
 
-void GaussianGlmbFilter::step(const Eigen::Ref<const Eigen::MatrixXd>& detections) {
+template <class Tracks>
+void GlmbFilter<Tracks>::step(const Eigen::Ref<const Eigen::MatrixXd>& detections) {
   if (detections.rows() != observation_.H.rows() && detections.cols() > 0) {
     throw InvalidArgument("detections must have " + std::to_string(observation_.H.rows()) +
                           " rows (one detection per column), got " +
@@ -112,30 +126,33 @@ void GaussianGlmbFilter::step(const Eigen::Ref<const Eigen::MatrixXd>& detection
   const int n_det = static_cast<int>(detections.cols());
 
   // Per candidate track (surviving prior tracks, then birth components): the predicted density,
-  // the log-probabilities of existing / not existing at this scan, and log(p_D g(z_j|x) / kappa)
-  // for every detection (-inf outside the gate). These factors are shared by all hypotheses.
-  std::vector<models::GaussianDensity> predicted;
-  std::vector<models::KalmanInnovation> innovations;
-  predicted.reserve(n_rows);
-  innovations.reserve(n_rows);
-  Eigen::VectorXd log_exists(n_rows), log_absent(n_rows);
+  // the log-probabilities of existing / not existing at this scan, log(p_D <p, g(z_j|.)> / kappa)
+  // for every detection (-inf outside the gate), and the log missed-detection factor
+  // log((1 - p_D) <p, psi_missed>) -- per row, because the switching model's missed branch
+  // depends on the track (its depth likelihood). These factors are shared by all hypotheses.
+  using Candidate = typename Tracks::Candidate;
+  std::vector<Candidate> candidates;
+  candidates.reserve(n_rows);
+  Eigen::VectorXd log_exists(n_rows), log_absent(n_rows), log_missed(n_rows);
   Eigen::MatrixXd log_detected(n_rows, n_det);
+  Eigen::RowVectorXd log_g(n_det);
   const double log_pd_over_kappa =
       std::log(params_.detection_probability) - std::log(params_.clutter_intensity);
-  const double log_missed = std::log1p(-params_.detection_probability);
+  const double log_miss = std::log1p(-params_.detection_probability);
   for (int r = 0; r < n_rows; ++r) {
     const bool is_birth = r >= n_prior;
-    predicted.push_back(is_birth ? birth(r - n_prior).density
-                                 : models::kalman_predict(tracks_[r].density, motion_));
+    candidates.push_back(tracks_model_.candidate(
+        is_birth ? tracks_model_.birth(birth(r - n_prior).density)
+                 : tracks_model_.predict(tracks_[r].density, motion_),
+        observation_));
     const double p_exist = is_birth ? birth(r - n_prior).existence : params_.survival_probability;
     log_exists[r] = std::log(p_exist);
     log_absent[r] = std::log1p(-p_exist);
-    innovations.emplace_back(predicted.back(), observation_);
+    log_missed[r] = log_miss + tracks_model_.log_missed_likelihood(candidates.back());
+    tracks_model_.log_detection_likelihoods(candidates.back(), detections,
+                                            params_.gate_threshold, log_g);
     for (int j = 0; j < n_det; ++j) {
-      const double d2 = innovations.back().mahalanobis_squared(detections.col(j));
-      log_detected(r, j) = d2 <= params_.gate_threshold
-                               ? log_pd_over_kappa + innovations.back().log_likelihood(detections.col(j))
-                               : -kInf;
+      log_detected(r, j) = log_g[j] > -kInf ? log_pd_over_kappa + log_g[j] : -kInf;
     }
   }
 
@@ -155,8 +172,9 @@ void GaussianGlmbFilter::step(const Eigen::Ref<const Eigen::MatrixXd>& detection
     if (found != child_of.end()) return found->second;
     Track child;
     child.label = row < n_prior ? tracks_[row].label : birth_label(row - n_prior);
-    child.density = detection < 0 ? predicted[row]
-                                  : innovations[row].posterior(detections.col(detection));
+    child.density = detection < 0
+                        ? tracks_model_.missed(candidates[row])
+                        : tracks_model_.detected(candidates[row], detections.col(detection));
     children.push_back(std::move(child));
     child_detection.push_back(detection);
     child_of.emplace(key, static_cast<int>(children.size()) - 1);
@@ -198,13 +216,13 @@ void GaussianGlmbFilter::step(const Eigen::Ref<const Eigen::MatrixXd>& detection
     const int m = static_cast<int>(columns.size());
     // Cost = -log of the factor each choice contributes to the posterior weight:
     //   detection j:      p_exist p_D g(z_j|x) / kappa
-    //   missed (col m+i): p_exist (1 - p_D)
+    //   missed (col m+i): p_exist (1 - p_D) <p, psi_missed>
     //   absent (m+n+i):   1 - p_exist (died, or not born)
     Eigen::MatrixXd cost = Eigen::MatrixXd::Constant(n, m + 2 * n, kInf);
     for (int i = 0; i < n; ++i) {
       const int r = rows[i];
       for (int c = 0; c < m; ++c) cost(i, c) = -(log_exists[r] + log_detected(r, columns[c]));
-      cost(i, m + i) = -(log_exists[r] + log_missed);
+      cost(i, m + i) = -(log_exists[r] + log_missed[r]);
       cost(i, m + n + i) = -log_absent[r];
     }
     const assign::RankedAssignments ranked = assign::murty(cost, requested);
@@ -280,7 +298,8 @@ void GaussianGlmbFilter::step(const Eigen::Ref<const Eigen::MatrixXd>& detection
   hypotheses_ = std::move(updated);
 }
 
-void GaussianGlmbFilter::propose_adaptive_births(
+template <class Tracks>
+void GlmbFilter<Tracks>::propose_adaptive_births(
     const Eigen::Ref<const Eigen::MatrixXd>& detections, const Eigen::VectorXd& assigned) {
   adaptive_births_.clear();
   adaptive_birth_detections_.clear();
@@ -303,7 +322,8 @@ void GaussianGlmbFilter::propose_adaptive_births(
   }
 }
 
-Eigen::VectorXd GaussianGlmbFilter::cardinality_distribution() const {
+template <class Tracks>
+Eigen::VectorXd GlmbFilter<Tracks>::cardinality_distribution() const {
   std::size_t largest = 0;
   for (const auto& h : hypotheses_) largest = std::max(largest, h.tracks.size());
   Eigen::VectorXd p = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(largest) + 1);
@@ -313,13 +333,15 @@ Eigen::VectorXd GaussianGlmbFilter::cardinality_distribution() const {
   return p;
 }
 
-int GaussianGlmbFilter::map_cardinality() const {
+template <class Tracks>
+int GlmbFilter<Tracks>::map_cardinality() const {
   Eigen::Index n = 0;
   cardinality_distribution().maxCoeff(&n);
   return static_cast<int>(n);
 }
 
-std::vector<GlmbEstimate> GaussianGlmbFilter::estimates() const {
+template <class Tracks>
+std::vector<GlmbEstimate> GlmbFilter<Tracks>::estimates() const {
   const std::size_t n = static_cast<std::size_t>(map_cardinality());
   const Hypothesis* best = nullptr;
   for (const auto& h : hypotheses_) {
@@ -328,9 +350,13 @@ std::vector<GlmbEstimate> GaussianGlmbFilter::estimates() const {
   std::vector<GlmbEstimate> out;
   if (!best) return out;
   for (int t : best->tracks) {
-    out.push_back({tracks_[t].label, tracks_[t].density.mean, tracks_[t].density.cov});
+    models::GaussianDensity m = Tracks::moments(tracks_[t].density);
+    out.push_back({tracks_[t].label, std::move(m.mean), std::move(m.cov)});
   }
   return out;
 }
+
+template class GlmbFilter<GaussianTracks>;
+template class GlmbFilter<ParticleTracks>;
 
 }  // namespace vtrack::filters

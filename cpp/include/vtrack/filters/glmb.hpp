@@ -10,8 +10,11 @@
 // gives the posterior hypotheses directly, each with its exact weight.
 //
 // Labels are l = (birth time k, birth component index i) as in the paper. A track's density is
-// one Gaussian (the Kalman recursion of models/linear_gaussian.hpp), kept per association history.
+// kept per association history: one Gaussian (GaussianTracks, the Kalman recursion of
+// models/linear_gaussian.hpp) or a weighted particle set (ParticleTracks, filters/particle_glmb.hpp,
+// with the paper's switching observation model).
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -76,11 +79,52 @@ struct GlmbEstimate {
   Eigen::MatrixXd cov;
 };
 
-class GaussianGlmbFilter {
+// The track-density policy of the Gaussian filter: one Gaussian per track, the Kalman recursion.
+// A policy (here and ParticleTracks in filters/particle_glmb.hpp) supplies, per candidate row of
+// one joint prediction-update, the predicted density and its factors; GlmbFilter<Policy> does
+// everything about hypotheses. Calls are per track, never per particle, so a template costs
+// nothing at run time.
+struct GaussianTracks {
+  using Density = models::GaussianDensity;
+  // A candidate track of the current scan: its predicted density and the measurement-independent
+  // half of its update, shared by every hypothesis that contains it.
+  struct Candidate {
+    Density predicted;
+    models::KalmanInnovation innovation;
+  };
+
+  Density predict(const Density& prior, const models::LinearGaussianMotion& motion) {
+    return models::kalman_predict(prior, motion);
+  }
+  Density birth(const models::GaussianDensity& density) { return density; }
+  Candidate candidate(Density predicted, const models::LinearGaussianObservation& observation) {
+    models::KalmanInnovation innovation(predicted, observation);
+    return {std::move(predicted), std::move(innovation)};
+  }
+  // log <p, g(z_j|.)> (eq. 2 integrated over the density) for every detection j, -inf outside
+  // the gate (squared Mahalanobis distance of the predicted detection above `gate`).
+  void log_detection_likelihoods(const Candidate& c, const Eigen::Ref<const Eigen::MatrixXd>& z,
+                                 double gate, Eigen::Ref<Eigen::RowVectorXd> out) const;
+  // log of the missed-detection factor divided by (1 - p_D): 0, there is no secondary observation.
+  double log_missed_likelihood(const Candidate&) const { return 0.0; }
+  Density detected(const Candidate& c, const Eigen::Ref<const Eigen::VectorXd>& z) {
+    return c.innovation.posterior(z);
+  }
+  Density missed(const Candidate& c) { return c.predicted; }
+  static models::GaussianDensity moments(const Density& d) { return d; }
+};
+
+// The delta-GLMB recursion, generic over the track density (a policy as GaussianTracks). The
+// hypothesis machinery -- per-row factors, sqrt-budgeted ranked assignments per prior hypothesis,
+// merging of equal track sets, log-domain normalisation, pruning and capping, r_U for adaptive
+// birth, keeping the tracks in use -- is written once here for every density.
+template <class Tracks>
+class GlmbFilter {
  public:
-  GaussianGlmbFilter(models::LinearGaussianMotion motion,
-                     models::LinearGaussianObservation observation,
-                     std::vector<GaussianBirth> births, GlmbParams params = {});
+  using Density = typename Tracks::Density;
+
+  GlmbFilter(models::LinearGaussianMotion motion, models::LinearGaussianObservation observation,
+             std::vector<GaussianBirth> births, GlmbParams params = {}, Tracks tracks = {});
 
   // One joint prediction-update with the detections of the next scan, one per column of the
   // z_dim x M matrix (M may be 0).
@@ -96,11 +140,15 @@ class GaussianGlmbFilter {
   std::size_t track_count() const { return tracks_.size(); }
   int time() const { return time_; }
   Eigen::Index z_dim() const { return observation_.H.rows(); }
+  const GlmbParams& params() const { return params_; }
+
+ protected:
+  Tracks tracks_model_;
 
  private:
   struct Track {
     TrackLabel label;
-    models::GaussianDensity density;
+    Density density;
   };
   struct Hypothesis {
     std::vector<int> tracks;  // indices into tracks_, increasing
@@ -124,5 +172,10 @@ class GaussianGlmbFilter {
   std::vector<Hypothesis> hypotheses_;
   int time_ = 0;
 };
+
+extern template class GlmbFilter<GaussianTracks>;
+
+// The Gaussian (Kalman) delta-GLMB filter. Deterministic: no random numbers.
+using GaussianGlmbFilter = GlmbFilter<GaussianTracks>;
 
 }  // namespace vtrack::filters

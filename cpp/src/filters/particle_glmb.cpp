@@ -1,0 +1,196 @@
+#include "vtrack/filters/particle_glmb.hpp"
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <utility>
+
+#include <Eigen/Eigenvalues>
+
+#include "vtrack/core/errors.hpp"
+#include "vtrack/core/resampling.hpp"
+#include "vtrack/core/weights.hpp"
+
+namespace vtrack::filters {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kLog2Pi = 1.8378770664093454835606594728112;
+
+// Lower Cholesky factor of a covariance that must be positive definite; `what` names it.
+Eigen::MatrixXd cholesky_of(const Eigen::MatrixXd& cov, const std::string& what) {
+  Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (cov + cov.transpose()));
+  if (llt.info() != Eigen::Success || !cov.allFinite()) {
+    throw InvalidArgument(what + " is not positive definite");
+  }
+  return llt.matrixL();
+}
+
+}  // namespace
+
+ParticleTracks::ParticleTracks(ParticleParams params, const models::LinearGaussianMotion& motion,
+                               const models::LinearGaussianObservation& observation,
+                               std::optional<models::DepthLikelihood> depth_model)
+    : params_(params), depth_model_(std::move(depth_model)), rng_(params.seed) {
+  if (params_.particles < 2) {
+    throw InvalidArgument("particles must be >= 2, got " + std::to_string(params_.particles));
+  }
+  if (!(params_.resample_threshold >= 0.0) || params_.resample_threshold > 1.0) {
+    throw InvalidArgument("resample_threshold must lie in [0, 1], got " +
+                          std::to_string(params_.resample_threshold));
+  }
+  // Q of eq. (7) is singular (rank 3: noise enters through Gamma), so no Cholesky factor: the
+  // symmetric square root from the eigen-decomposition, negative round-off clamped to zero.
+  const Eigen::MatrixXd Q = 0.5 * (motion.Q + motion.Q.transpose());
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(Q);
+  if (eig.info() != Eigen::Success || eig.eigenvalues().minCoeff() < -1e-9 * (1.0 + Q.norm())) {
+    throw InvalidArgument("motion Q is not positive semi-definite");
+  }
+  motion_noise_sqrt_ = eig.eigenvectors() *
+                       eig.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal() *
+                       eig.eigenvectors().transpose();
+  noise_llt_.compute(0.5 * (observation.R + observation.R.transpose()));
+  if (noise_llt_.info() != Eigen::Success) {
+    throw InvalidArgument("observation R is not positive definite");
+  }
+  const Eigen::MatrixXd L = noise_llt_.matrixL();
+  log_g1_normaliser_ = -0.5 * static_cast<double>(L.rows()) * kLog2Pi -
+                       L.diagonal().array().log().sum();
+  if (depth_model_ && observation.H.rows() != 3) {
+    throw InvalidArgument("a depth model needs 3-D detections (X, Y, D), got z_dim " +
+                          std::to_string(observation.H.rows()));
+  }
+}
+
+void ParticleTracks::set_depth(const cv::Mat* depth) {
+  depth_frame_.reset();
+  if (!depth) return;
+  if (!depth_model_) throw InvalidArgument("depth given but the tracker has no depth model");
+  depth_frame_ = depth_model_->frame(*depth);
+}
+
+ParticleDensity ParticleTracks::predict(const Density& prior,
+                                        const models::LinearGaussianMotion& motion) {
+  const Eigen::Index n = prior.x.cols();
+  noise_.resize(prior.x.rows(), n);
+  rng_.fill_normal(noise_.data(), static_cast<std::size_t>(noise_.size()));
+  Density out{motion.F * prior.x, prior.log_w};
+  out.x.noalias() += motion_noise_sqrt_ * noise_;
+  return out;
+}
+
+ParticleDensity ParticleTracks::birth(const models::GaussianDensity& density) {
+  const Eigen::MatrixXd L = cholesky_of(density.cov, "birth covariance");
+  noise_.resize(density.mean.size(), params_.particles);
+  rng_.fill_normal(noise_.data(), static_cast<std::size_t>(noise_.size()));
+  Density out{L * noise_, Eigen::VectorXd::Constant(params_.particles,
+                                                     -std::log(static_cast<double>(params_.particles)))};
+  out.x.colwise() += density.mean;
+  return out;
+}
+
+ParticleTracks::Candidate ParticleTracks::candidate(
+    Density predicted, const models::LinearGaussianObservation& observation) {
+  Eigen::MatrixXd z = observation.H * predicted.x;
+  // The Gaussian moment match only gates (it is never used for weights); its covariance is
+  // positive definite because Sigma is.
+  models::KalmanInnovation gate(moments(predicted), observation);
+  Candidate c{std::move(predicted), std::move(gate), std::move(z), {}, 0.0};
+  if (depth_frame_) {
+    c.depth_log_ratio.resize(c.predicted.x.cols());
+    depth_model_->log_ratio(*depth_frame_, c.predicted_z, c.depth_log_ratio);
+    // log eta_depth = log sum_p w_p g2(d|x_p) / prod_all varphi (the common product cancels).
+    c.log_eta_depth = core::log_sum_exp(c.predicted.log_w + c.depth_log_ratio);
+  }
+  return c;
+}
+
+void ParticleTracks::log_g1(const Candidate& c, const Eigen::Ref<const Eigen::VectorXd>& z,
+                            Eigen::VectorXd& out) const {
+  // Whitened residuals L^{-1} (z - H x_p) for all particles at once: one triangular solve on a
+  // z_dim x N block, then column norms (contiguous, vectorised by Eigen).
+  Eigen::MatrixXd white = (-c.predicted_z).colwise() + z;
+  noise_llt_.matrixL().solveInPlace(white);
+  out = log_g1_normaliser_ - 0.5 * white.colwise().squaredNorm().transpose().array();
+}
+
+void ParticleTracks::log_detection_likelihoods(const Candidate& c,
+                                               const Eigen::Ref<const Eigen::MatrixXd>& z,
+                                               double gate,
+                                               Eigen::Ref<Eigen::RowVectorXd> out) const {
+  Eigen::VectorXd lg;
+  for (Eigen::Index j = 0; j < z.cols(); ++j) {
+    if (c.gate.mahalanobis_squared(z.col(j)) > gate) {
+      out[j] = -kInf;
+      continue;
+    }
+    log_g1(c, z.col(j), lg);
+    // eta = sum_p w_p g1(z|x_p) (eq. 2 under the particle density).
+    out[j] = core::log_sum_exp(c.predicted.log_w + lg);
+  }
+}
+
+ParticleDensity ParticleTracks::reweight(const Density& prior, const Eigen::VectorXd& log_lik) {
+  Density out{prior.x, prior.log_w + log_lik};
+  const double total = core::log_sum_exp(out.log_w);
+  if (!std::isfinite(total)) {
+    // No particle explains the data (all weights underflowed in the log domain, or +inf): keep
+    // the prior rather than produce NaN. The hypothesis weight already carries the evidence.
+    return prior;
+  }
+  out.log_w.array() -= total;
+  const Eigen::Index n = out.x.cols();
+  if (core::effective_sample_size_log(out.log_w) < params_.resample_threshold * n) {
+    const Eigen::VectorXd w = out.log_w.array().exp();
+    const auto ancestors =
+        core::resample(core::ResamplingScheme::Systematic, w, static_cast<std::size_t>(n), rng_);
+    Eigen::MatrixXd x(out.x.rows(), n);
+    for (Eigen::Index p = 0; p < n; ++p) x.col(p) = out.x.col(ancestors[p]);
+    out.x = std::move(x);
+    out.log_w.setConstant(-std::log(static_cast<double>(n)));
+  }
+  return out;
+}
+
+ParticleDensity ParticleTracks::detected(const Candidate& c,
+                                         const Eigen::Ref<const Eigen::VectorXd>& z) {
+  log_g1(c, z, scratch_);
+  return reweight(c.predicted, scratch_);
+}
+
+ParticleDensity ParticleTracks::missed(const Candidate& c) {
+  if (c.depth_log_ratio.size() == 0) return c.predicted;  // detection-only: psi = 1 - p_D
+  return reweight(c.predicted, c.depth_log_ratio);
+}
+
+models::GaussianDensity ParticleTracks::moments(const Density& d) {
+  const Eigen::VectorXd w = (d.log_w.array() - core::log_sum_exp(d.log_w)).exp();
+  Eigen::VectorXd mean = d.x * w;
+  const Eigen::MatrixXd centred = d.x.colwise() - mean;
+  Eigen::MatrixXd cov = centred * w.asDiagonal() * centred.transpose();
+  return {std::move(mean), std::move(cov)};
+}
+
+ParticleGlmbFilter::ParticleGlmbFilter(models::LinearGaussianMotion motion,
+                                       models::LinearGaussianObservation observation,
+                                       std::vector<GaussianBirth> births, GlmbParams params,
+                                       ParticleParams particle_params,
+                                       std::optional<models::DepthLikelihood> depth_model)
+    : GlmbFilter<ParticleTracks>(
+          motion, observation, births, params,
+          ParticleTracks(particle_params, motion, observation, std::move(depth_model))) {
+  // Birth covariances are sampled through their Cholesky factor: check them now, not mid-step.
+  for (std::size_t b = 0; b < births.size(); ++b) {
+    cholesky_of(births[b].density.cov, "birth covariance " + std::to_string(b));
+  }
+  if (params.adaptive_birth.enabled) cholesky_of(params.adaptive_birth.cov, "adaptive_birth cov");
+}
+
+void ParticleGlmbFilter::step(const Eigen::Ref<const Eigen::MatrixXd>& detections,
+                              const cv::Mat* depth) {
+  tracks_model_.set_depth(depth);
+  GlmbFilter<ParticleTracks>::step(detections);
+  tracks_model_.set_depth(nullptr);
+}
+
+}  // namespace vtrack::filters
