@@ -103,6 +103,13 @@ given (the paper's particle implementation):
                         reweighted by the depth image (eq. 4) instead of (1 - p_D) alone
   resample_threshold    systematic resampling when N_eff < resample_threshold * particles
   seed                  the particle filter's random engine (same seed, same tracks)
+  depth_for_births      also score birth rows' missed branch by the depth image (eq. 8 read
+                        literally; off: eq. 4 cannot tell a new person from a tracked one, so
+                        births would be spawned from every tracked person's depth pixels)
+  mask_detections       blank the footprints of the scan's detections in the depth image before
+                        scoring missed tracks (default True: a detected person's pixels are
+                        explained by the detection, so duplicate tracks cannot live on them;
+                        False = eq. 4 on the raw image, as the paper)
 
 The Gaussian filter is deterministic (no random numbers). step() releases the GIL; one tracker
 must not be stepped from two threads at once.
@@ -116,7 +123,8 @@ must not be stepped from two threads at once.
                        double adaptive_birth_rate, double adaptive_birth_max_existence,
                        std::optional<int> particles,
                        std::optional<models::DepthLikelihood> depth_model,
-                       double resample_threshold, std::uint64_t seed) {
+                       double resample_threshold, std::uint64_t seed, bool depth_for_births,
+                       bool mask_detections) {
              GlmbParams p;
              p.survival_probability = survival_probability;
              p.detection_probability = detection_probability;
@@ -139,6 +147,8 @@ must not be stepped from two threads at once.
              if (particles) pp.particles = *particles;
              pp.resample_threshold = resample_threshold;
              pp.seed = seed;
+             pp.depth_for_births = depth_for_births;
+             pp.mask_detections = mask_detections;
              return GlmbTracker{ParticleGlmbFilter(motion, observation, births_from(births), p, pp,
                                                    std::move(depth_model))};
            }),
@@ -155,7 +165,9 @@ must not be stepped from two threads at once.
            py::arg("adaptive_birth_max_existence") = defaults.adaptive_birth.max_existence,
            py::arg("particles") = py::none(), py::arg("depth_model") = py::none(),
            py::arg("resample_threshold") = particle_defaults.resample_threshold,
-           py::arg("seed") = particle_defaults.seed)
+           py::arg("seed") = particle_defaults.seed,
+           py::arg("depth_for_births") = particle_defaults.depth_for_births,
+           py::arg("mask_detections") = particle_defaults.mask_detections)
       .def(
           "step",
           [](GlmbTracker& t, const py::handle& detections, const py::handle& depth) {

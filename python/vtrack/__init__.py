@@ -10,8 +10,11 @@ multi-Bernoulli track-before-detect tracker that consumes y (H x W float32, near
 background): ``vtrack.MultiBernoulliTracker((width, height), seed=1)`` and ``.step(y)`` per
 frame; ``vtrack.mot`` writes MOTChallenge files, ``python -m vtrack.evaluate`` scores them,
 ``vtrack.synthetic`` makes scenes with exact ground truth. ``vtrack.GlmbTracker`` is the
-labelled RFS tracker (Gaussian delta-GLMB, scenarios in ``vtrack.scenarios``), built on
-``linear_assignment`` and Murty's k-best ``murty``; ``ospa``, ``ospa2`` and ``gospa`` score it.
+labelled RFS tracker (delta-GLMB with Gaussian or particle track densities, scenarios in
+``vtrack.scenarios``), built on ``linear_assignment`` and Murty's k-best ``murty``; with
+``particles=`` and a ``DepthLikelihood`` it is the RGB-D switching-observation tracker
+(``step(detections, depth=...)``, Kinect conversion ``kinect_raw_to_depth``, synthetic scenes in
+``vtrack.rgbd``); ``ospa``, ``ospa2`` and ``gospa`` score it.
 
 >>> import numpy as np, vtrack
 >>> rng = vtrack.Rng(seed=1)
@@ -30,6 +33,7 @@ from ._core import (
     BernoulliComponent,
     bgr_to_rgi,
     close_square,
+    DepthLikelihood,
     effective_sample_size,
     foreground_mask,
     Gaussian,
@@ -41,6 +45,8 @@ from ._core import (
     InvalidArgument,
     IoError,
     KdeBackground,
+    kinect_depth_to_raw,
+    kinect_raw_to_depth,
     linear_assignment,
     LinearGaussianMotion,
     LinearGaussianObservation,
@@ -61,7 +67,7 @@ from ._core import (
 )
 
 # Pure-Python modules built on the compiled ones above.
-from . import mot, scenarios, synthetic  # noqa: E402
+from . import mot, rgbd, scenarios, synthetic  # noqa: E402
 from .boxes import track_detections  # noqa: E402
 
 RESAMPLING_METHODS = ("multinomial", "stratified", "systematic", "residual")
@@ -70,6 +76,7 @@ __all__ = [
     "BernoulliComponent",
     "bgr_to_rgi",
     "close_square",
+    "DepthLikelihood",
     "effective_sample_size",
     "foreground_mask",
     "Gaussian",
@@ -81,6 +88,8 @@ __all__ = [
     "InvalidArgument",
     "IoError",
     "KdeBackground",
+    "kinect_depth_to_raw",
+    "kinect_raw_to_depth",
     "linear_assignment",
     "LinearGaussianMotion",
     "LinearGaussianObservation",
@@ -95,6 +104,7 @@ __all__ = [
     "probe_video",
     "resample",
     "RESAMPLING_METHODS",
+    "rgbd",
     "Rng",
     "scenarios",
     "synthetic",

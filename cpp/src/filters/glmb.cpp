@@ -144,7 +144,7 @@ void GlmbFilter<Tracks>::step(const Eigen::Ref<const Eigen::MatrixXd>& detection
     candidates.push_back(tracks_model_.candidate(
         is_birth ? tracks_model_.birth(birth(r - n_prior).density)
                  : tracks_model_.predict(tracks_[r].density, motion_),
-        observation_));
+        observation_, is_birth));
     const double p_exist = is_birth ? birth(r - n_prior).existence : params_.survival_probability;
     log_exists[r] = std::log(p_exist);
     log_absent[r] = std::log1p(-p_exist);

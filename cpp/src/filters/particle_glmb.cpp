@@ -62,11 +62,24 @@ ParticleTracks::ParticleTracks(ParticleParams params, const models::LinearGaussi
   }
 }
 
-void ParticleTracks::set_depth(const cv::Mat* depth) {
+void ParticleTracks::set_depth(const cv::Mat* depth,
+                               const Eigen::Ref<const Eigen::MatrixXd>& detections) {
   depth_frame_.reset();
   if (!depth) return;
   if (!depth_model_) throw InvalidArgument("depth given but the tracker has no depth model");
-  depth_frame_ = depth_model_->frame(*depth);
+  if (!params_.mask_detections || detections.cols() == 0) {
+    depth_frame_ = depth_model_->frame(*depth);
+    return;
+  }
+  cv::Mat masked = depth->clone();
+  for (Eigen::Index j = 0; j < detections.cols(); ++j) {
+    if (detections.rows() != 3) break;  // the filter reports the shape error
+    const image::Rect r = depth_model_->footprint(detections(0, j), detections(1, j), detections(2, j));
+    if (r.width > 0 && r.height > 0 && r.x + r.width <= masked.cols && r.y + r.height <= masked.rows) {
+      masked(cv::Rect(r.x, r.y, r.width, r.height)).setTo(0.0);
+    }
+  }
+  depth_frame_ = depth_model_->frame(masked);
 }
 
 ParticleDensity ParticleTracks::predict(const Density& prior,
@@ -90,13 +103,13 @@ ParticleDensity ParticleTracks::birth(const models::GaussianDensity& density) {
 }
 
 ParticleTracks::Candidate ParticleTracks::candidate(
-    Density predicted, const models::LinearGaussianObservation& observation) {
+    Density predicted, const models::LinearGaussianObservation& observation, bool is_birth) {
   Eigen::MatrixXd z = observation.H * predicted.x;
   // The Gaussian moment match only gates (it is never used for weights); its covariance is
   // positive definite because Sigma is.
   models::KalmanInnovation gate(moments(predicted), observation);
   Candidate c{std::move(predicted), std::move(gate), std::move(z), {}, 0.0};
-  if (depth_frame_) {
+  if (depth_frame_ && (!is_birth || params_.depth_for_births)) {
     c.depth_log_ratio.resize(c.predicted.x.cols());
     depth_model_->log_ratio(*depth_frame_, c.predicted_z, c.depth_log_ratio);
     // log eta_depth = log sum_p w_p g2(d|x_p) / prod_all varphi (the common product cancels).
@@ -188,9 +201,9 @@ ParticleGlmbFilter::ParticleGlmbFilter(models::LinearGaussianMotion motion,
 
 void ParticleGlmbFilter::step(const Eigen::Ref<const Eigen::MatrixXd>& detections,
                               const cv::Mat* depth) {
-  tracks_model_.set_depth(depth);
+  tracks_model_.set_depth(depth, detections);
   GlmbFilter<ParticleTracks>::step(detections);
-  tracks_model_.set_depth(nullptr);
+  tracks_model_.set_depth(nullptr, detections);
 }
 
 }  // namespace vtrack::filters

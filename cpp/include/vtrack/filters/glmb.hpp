@@ -97,7 +97,8 @@ struct GaussianTracks {
     return models::kalman_predict(prior, motion);
   }
   Density birth(const models::GaussianDensity& density) { return density; }
-  Candidate candidate(Density predicted, const models::LinearGaussianObservation& observation) {
+  Candidate candidate(Density predicted, const models::LinearGaussianObservation& observation,
+                      bool /*is_birth*/) {
     models::KalmanInnovation innovation(predicted, observation);
     return {std::move(predicted), std::move(innovation)};
   }

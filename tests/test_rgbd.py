@@ -1,0 +1,184 @@
+"""The RGB-D switching observation model: Kinect conversion (eq. 3), depth likelihood (eq. 4),
+the particle GLMB tracker with depth, and the synthetic scene."""
+
+import numpy as np
+import pytest
+
+import vtrack
+from vtrack.rgbd import RgbdScene, identity_events, make_rgbd_scene, match_frame
+
+
+def test_kinect_conversion_is_equation_3_and_its_inverse():
+    raw = np.array([0.0, 500.0, 1000.0, 1083.0])
+    np.testing.assert_allclose(vtrack.kinect_raw_to_depth(raw, 525.0),
+                               8 * 0.075 * 525.0 / (1084.0 - raw), rtol=1e-15)
+    # No reading: raw >= W_max, negative, NaN -> 0.
+    np.testing.assert_array_equal(
+        vtrack.kinect_raw_to_depth(np.array([1084.0, 2047.0, -3.0, np.nan]), 525.0), 0.0)
+    depth = np.linspace(0.3, 12.0, 200)
+    np.testing.assert_allclose(
+        vtrack.kinect_raw_to_depth(vtrack.kinect_depth_to_raw(depth, 300.0), 300.0), depth,
+        rtol=1e-12)
+    assert vtrack.kinect_depth_to_raw(0.0) == 2047.0  # no reading stays no reading
+    assert vtrack.kinect_depth_to_raw(0.1) == 2047.0  # nearer than the sensor's minimum
+
+
+def numpy_log_ratio(model, depth, positions):
+    """Eq. (4)'s tempered log ratio by summing log phi - log varphi over the footprint's pixels,
+    the footprint from the pinhole formulas (independent of the C++ model)."""
+    out = []
+    sw, sh = model.person_size
+    for X, Y, D in positions:
+        if D <= 0.1:
+            out.append(0.0)
+            continue
+        u, v = model.cx + model.fx * X / D, model.cy + model.fy * Y / D
+        a, b = model.fx * sw / (2 * D), model.fy * sh / (2 * D)
+        x0, x1 = (int(np.clip(np.floor(t + 0.5), 0, model.width)) for t in (u - a, u + a))
+        y0, y1 = (int(np.clip(np.floor(t + 0.5), 0, model.height)) for t in (v - b, v + b))
+        d = depth[y0:y1, x0:x1].astype(np.float64)
+        st, sb = model.sigma_target, model.sigma_background
+        log_phi = -np.log(st) - (d - D) ** 2 / (2 * st * st)
+        log_varphi = -np.log(sb) - d ** 2 / (2 * sb * sb)
+        out.append(model.tempering * float(np.sum(log_phi - log_varphi)))
+    return np.array(out)
+
+
+@pytest.mark.parametrize("sigmas", [(1.0, 1.0), (0.2, 0.7)])
+def test_depth_log_ratio_matches_a_pixel_loop(sigmas):
+    rng = np.random.default_rng(3)
+    model = vtrack.DepthLikelihood(64, 48, 50.0, 47.0, 30.2, 25.1, person_size=(0.45, 1.6),
+                                   sigma_target=sigmas[0], sigma_background=sigmas[1],
+                                   tempering=0.5)
+    for _ in range(3):
+        depth = np.where(rng.random((48, 64)) < 0.5, 0.0,
+                         rng.uniform(0.5, 6.0, (48, 64))).astype(np.float32)
+        positions = np.column_stack([rng.uniform(-3, 3, 300), rng.uniform(-2, 2, 300),
+                                     rng.uniform(-0.5, 7.0, 300)])
+        got = model.log_ratio(depth, positions)
+        expected = numpy_log_ratio(model, depth, positions)
+        np.testing.assert_allclose(got, expected, rtol=1e-9, atol=1e-9)
+        rects = np.array([model.footprint(p) for p in positions])
+        on_border = (rects[:, 2] > 0) & ((rects[:, 0] == 0) | (rects[:, 0] + rects[:, 2] == 64))
+        assert on_border.sum() > 10  # clipping at the image border was exercised
+        assert (rects[:, 0] + rects[:, 2] <= 64).all() and (rects[:, 1] + rects[:, 3] <= 48).all()
+
+
+def test_depth_errors_name_the_argument():
+    scene = make_rgbd_scene(seed=0, frames=3)
+    tracker = scene.tracker()
+    z = scene.detections[0]
+    with pytest.raises(ValueError, match="depth"):
+        tracker.step(z, depth=np.zeros((10, 10), np.float32))
+    with pytest.raises(TypeError, match="depth"):
+        tracker.step(z, depth=np.zeros((240, 320), np.uint8))
+    bad = scene.depth(0)
+    bad[5, 5] = np.nan
+    with pytest.raises(ValueError, match="depth"):
+        tracker.step(z, depth=bad)
+    with pytest.raises(ValueError, match="detections"):
+        tracker.step(np.array([[0.0, np.nan, 1.0]]), depth=scene.depth(0))
+    assert tracker.time == 0
+    with pytest.raises(ValueError, match="depth"):  # a tracker without a depth model
+        scene.tracker(switching=False).step(z, depth=scene.depth(0))
+    with pytest.raises(ValueError, match="depth"):
+        scene.tracker(density="gaussian", switching=False).step(z, depth=scene.depth(0))
+    with pytest.raises(ValueError, match="max_hypotheses"):
+        scene.tracker(max_hypotheses=0)
+    with pytest.raises(ValueError, match="positive definite"):
+        scene.tracker(adaptive_birth_cov=-np.eye(6))
+    with pytest.raises(ValueError, match="tempering"):
+        scene.depth_model(tempering=0.0)
+
+
+def run(tracker, scene, depth=True, frames=None):
+    out = []
+    for k in range(frames or scene.frames):
+        est = (tracker.step(scene.detections[k], depth=scene.depth(k)) if depth
+               else tracker.step(scene.detections[k]))
+        out.append([(e.label, e.mean[[0, 2, 4]].copy()) for e in est])
+    return out
+
+
+def test_same_seed_same_tracks():
+    scene = make_rgbd_scene(seed=2, frames=40, people=2)
+    a = run(scene.tracker(particles=100, seed=9), scene)
+    b = run(scene.tracker(particles=100, seed=9), scene)
+    c = run(scene.tracker(particles=100, seed=10), scene)
+    flat = lambda r: [(lab, x.tobytes()) for f in r for lab, x in f]  # noqa: E731
+    assert flat(a) == flat(b) and len(flat(a)) > 0
+    assert flat(a) != flat(c)
+    assert scene.tracker(particles=100).particles == 100
+    assert scene.tracker(density="gaussian", switching=False).particles is None
+
+
+def one_person_with_a_burst():
+    """One person, detected at every frame except frames 30-49 (a 0.67 s burst), clutter 2 per
+    frame (with clutter, adaptive birth proposes almost nothing from the person's detections)."""
+    scene = make_rgbd_scene(seed=5, frames=80, people=1, burst_rate=1e-9, clutter_rate=2.0,
+                            detection_probability=1.0)
+    scene.detection_probability = 0.95  # the trackers' p_D (the scene was drawn with 1)
+    burst = range(30, 50)
+    scene.detections = [np.empty((0, 3)) if k in burst else z
+                        for k, z in enumerate(scene.detections)]
+    scene.missed = [np.array([0]) if k in burst else m for k, m in enumerate(scene.missed)]
+    scene.bursts = [(0, 30, 49)]
+    return scene, burst
+
+
+def test_switching_keeps_the_label_through_a_burst_that_detection_only_loses():
+    scene, burst = one_person_with_a_burst()
+    switching = run(scene.tracker(particles=200, seed=1), scene)
+    detection_only = run(scene.tracker(particles=200, seed=1, switching=False), scene,
+                         depth=False)
+    # The switching model: the person keeps the label they had before the burst, through every
+    # burst frame (an estimate within 0.5 m, the benchmark gate: depth pins X and Y to a few cm
+    # but D only loosely) and after it: no switch, no fragmentation.
+    def label_near(frame, k):
+        near = [lab for lab, x in frame if np.linalg.norm(x - scene.truth_positions(k)[0]) < 0.5]
+        return near[0] if len(near) == 1 else None
+    before = label_near(switching[29], 29)
+    assert before is not None
+    for k in list(burst) + list(range(50, 80)):
+        assert label_near(switching[k], k) == before, f"frame {k}"
+    ev = identity_events(scene, switching)  # (a label may change during the start-up births)
+    assert ev.fragmentations == 0 and ev.burst_coverage == 1.0
+    # Detection-only (same particle filter, no depth): the track is dropped within the burst and
+    # the person comes back under another label or after a gap.
+    lost = sum(len(detection_only[k]) == 0 for k in burst)
+    assert lost >= 10
+    ev = identity_events(scene, detection_only)
+    assert ev.fragmentations + ev.label_switches >= 1
+    assert ev.burst_coverage < 0.5
+
+
+def test_match_frame_and_identity_events_on_a_hand_case():
+    truth = np.array([[0.0, 0, 0], [1.0, 0, 0]])
+    est = np.array([[1.1, 0, 0], [5.0, 0, 0], [0.05, 0, 0]])
+    assert sorted(match_frame(truth, est, gate=0.5)) == [(0, 2), (1, 0)]
+    assert match_frame(truth, np.empty((0, 3)), 0.5) == []
+    # One truth id over 5 frames: label A, A, none, B, B -> 1 fragmentation, 1 switch.
+    scene = RgbdScene(truth_states=[np.zeros((1, 6))] * 5, truth_ids=[np.array([7])] * 5,
+                      detections=[np.empty((0, 3))] * 5, missed=[np.array([])] * 5,
+                      bursts=[(7, 2, 2)], seed=0)
+    x = np.zeros(3)
+    frames = [[("A", x)], [("A", x)], [], [("B", x)], [("B", x)]]
+    ev = identity_events(scene, frames, gate=0.5)
+    assert (ev.label_switches, ev.fragmentations, ev.matched_frames, ev.truth_frames) == (1, 1, 4, 5)
+    assert ev.burst_coverage == 0.0
+
+
+def test_scene_depth_image_shows_the_people():
+    scene = make_rgbd_scene(seed=1, frames=5, people=3)
+    d = scene.depth(4)
+    assert d.shape == (240, 320) and d.dtype == np.float32
+    assert np.array_equal(d, scene.depth(4))  # deterministic in (seed, frame)
+    model = scene.depth_model()
+    people = scene.truth_positions(4)
+    at_truth = model.log_ratio(d, people)
+    elsewhere = model.log_ratio(d, people + np.array([2.5, 0.0, 0.0]))
+    # Unoccluded people score positive on their own footprint; most shifted footprints do not.
+    assert (at_truth > 0).sum() >= 2
+    assert np.median(at_truth) > np.median(elsewhere)
+    # Background pixels are subtracted away (zero) apart from noise.
+    assert (d == 0).mean() > 0.6
