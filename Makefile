@@ -41,6 +41,7 @@ bench: $(VENV)/.vtrack-installed $(VENV)/.bench-deps $(VIDEO)
 	$(PY) benchmarks/resampling.py
 	$(PY) benchmarks/murty.py
 	$(PY) benchmarks/glmb_standard.py
+	$(PY) benchmarks/rgbd_switching.py --figure $(DEMO_OUT)/rgbd_switching.png
 	$(PY) benchmarks/bgs.py
 	$(PY) benchmarks/bgs_quality.py --out $(DEMO_OUT)/bgs_contact_sheet.png
 	$(PY) benchmarks/multi_bernoulli.py
