@@ -1,7 +1,7 @@
 """The RGB-D switching observation model against detection-only GLMB tracking.
 
-Usage: python benchmarks/rgbd_switching.py [--seeds N] [--frames K] [--particles P]
-                                           [--tempering T] [--figure PATH]
+Usage: python benchmarks/rgbd_switching.py [--seeds N] [--frames K] [--particles P] [--ablations]
+          [--tempering T] [--sigma-target S] [--sigma-background S] [--figure PATH]
 
 On vtrack.rgbd.make_rgbd_scene (four people walking 1.5-6 m in front of a simulated 320 x 240
 Kinect at 30 Hz; 3-D detections with clutter 2/frame, p_D 0.95 and bursts of 8-30 missed frames
@@ -51,14 +51,20 @@ METHODS = {
     "particle, detection-only": dict(density="particle", switching=False),
     "gaussian, detection-only": dict(density="gaussian", switching=False),
 }
+# --ablations: the switching model without its one deviation from the paper (eq. 4 on the raw
+# depth image, detections' footprints not blanked), and with births scored without depth.
+ABLATIONS = {
+    "switching, detections not masked (eq. 4 as is)": dict(density="particle", switching=True,
+                                                           mask_detections=False),
+    "switching, births without depth": dict(density="particle", switching=True,
+                                            depth_for_births=False),
+}
 C = 1.0  # OSPA cut-off (m)
 
 
-def run(scene, method, particles, tempering):
-    spec = METHODS[method]
-    depth_params = {"tempering": tempering} if spec["switching"] else None
+def run(scene, spec, particles, depth_params):
     tracker = scene.tracker(**spec, particles=particles, seed=scene.seed,
-                            depth_params=depth_params)
+                            depth_params=depth_params if spec["switching"] else None)
     frames, seconds = [], []
     for k, z in enumerate(scene.detections):
         depth = scene.depth(k) if spec["switching"] else None
@@ -150,21 +156,37 @@ def main():
     parser.add_argument("--particles", type=int, default=300)
     parser.add_argument("--tempering", type=float, default=None,
                         help="depth likelihood tempering (default: DepthLikelihood's)")
+    parser.add_argument("--sigma-target", type=float, default=None,
+                        help="depth likelihood sigma_t, m (default: DepthLikelihood's)")
+    parser.add_argument("--sigma-background", type=float, default=None,
+                        help="depth likelihood sigma_b, m (default: DepthLikelihood's)")
+    parser.add_argument("--ablations", action="store_true",
+                        help="also run the switching model without its two deviations")
+    parser.add_argument("--switching-only", action="store_true",
+                        help="only the switching tracker (for parameter sweeps)")
     parser.add_argument("--figure", default="demo-output/rgbd_switching.png")
     parser.add_argument("--figure-seed", type=int, default=0)
     args = parser.parse_args()
-    tempering = args.tempering if args.tempering is not None else vtrack.DepthLikelihood(
-        2, 2, 1.0).tempering
+    defaults = vtrack.DepthLikelihood(2, 2, 1.0)
+    depth_params = {
+        "tempering": args.tempering if args.tempering is not None else defaults.tempering,
+        "sigma_target": (args.sigma_target if args.sigma_target is not None
+                         else defaults.sigma_target),
+        "sigma_background": (args.sigma_background if args.sigma_background is not None
+                             else defaults.sigma_background)}
+    methods = dict(METHODS, **(ABLATIONS if args.ablations else {}))
+    if args.switching_only:
+        methods = {k: v for k, v in methods.items() if v["switching"]}
 
-    per_method = {m: [] for m in METHODS}
+    per_method = {m: [] for m in methods}
     for seed in range(args.seeds):
         scene = make_rgbd_scene(seed=seed, frames=args.frames)
         kept = {}
-        for method in METHODS:
-            frames, ms = run(scene, method, args.particles, tempering)
+        for method, spec in methods.items():
+            frames, ms = run(scene, spec, args.particles, depth_params)
             per_method[method].append({**score(scene, frames), "ms": ms})
             kept[method] = frames
-        if seed == args.figure_seed:
+        if seed == args.figure_seed and args.figure:
             figure(scene, kept, args.figure)
     rows = []
     for method, results in per_method.items():
@@ -175,11 +197,12 @@ def main():
                      f"{med['frag']:.0f} ({total['frag']})", f"{med['burst']:.2f}",
                      f"{med['card']:.3f}", f"{med['ms']:.2f}"])
     print(f"RGB-D switching observation model, {args.seeds} seeds x {args.frames} frames, "
-          f"{args.particles} particles/track, tempering {tempering:g}; medians over seeds "
+          f"{args.particles} particles/track, depth model {depth_params}; medians over seeds "
           "(totals in brackets)\n")
     print_table(["tracker", "OSPA (m)", "OSPA(2) (m)", "label switches", "fragmentations",
                  "burst coverage", "card. err.", "ms/scan"], rows)
-    print(f"\nfigure (seed {args.figure_seed}): {args.figure}")
+    if args.figure:
+        print(f"\nfigure (seed {args.figure_seed}): {args.figure}")
 
 
 if __name__ == "__main__":

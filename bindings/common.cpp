@@ -124,6 +124,14 @@ cv::Mat gray_image(const py::handle& obj, const char* name, py::array& keep) {
   return mat_over(keep, cv_type);
 }
 
+cv::Mat depth_image(const py::handle& obj, const char* name, py::array& keep) {
+  cv::Mat image = gray_image(obj, name, keep);
+  if (image.depth() == CV_8U) {
+    throw py::type_error(std::string(name) + " must be float32 or float64 metres, got uint8");
+  }
+  return image;
+}
+
 core::Rng& rng_from(const py::handle& rng, core::Rng& storage) {
   if (py::isinstance<core::Rng>(rng)) return rng.cast<core::Rng&>();
   if (py::isinstance<py::int_>(rng) && !py::isinstance<py::bool_>(rng)) {

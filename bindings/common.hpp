@@ -50,6 +50,10 @@ cv::Mat bgr_frame(const py::handle& obj, const char* name, py::array& keep);
 // C-contiguous input.
 cv::Mat gray_image(const py::handle& obj, const char* name, py::array& keep);
 
+// A metric depth image for the depth likelihood: as gray_image, but float32 or float64 only
+// (TypeError naming `name` for uint8: depth is in metres).
+cv::Mat depth_image(const py::handle& obj, const char* name, py::array& keep);
+
 // `rng` may be a vtrack.Rng (used and advanced in place) or an int seed (a fresh Rng).
 core::Rng& rng_from(const py::handle& rng, core::Rng& storage);
 

@@ -103,9 +103,8 @@ given (the paper's particle implementation):
                         reweighted by the depth image (eq. 4) instead of (1 - p_D) alone
   resample_threshold    systematic resampling when N_eff < resample_threshold * particles
   seed                  the particle filter's random engine (same seed, same tracks)
-  depth_for_births      also score birth rows' missed branch by the depth image (eq. 8 read
-                        literally; off: eq. 4 cannot tell a new person from a tracked one, so
-                        births would be spawned from every tracked person's depth pixels)
+  depth_for_births      births' missed branch is scored by the depth image too (default True,
+                        eq. 8's psi for every label; False: (1 - p_D) alone)
   mask_detections       blank the footprints of the scan's detections in the depth image before
                         scoring missed tracks (default True: a detected person's pixels are
                         explained by the detection, so duplicate tracks cannot live on them;
@@ -184,10 +183,7 @@ must not be stepped from two threads at once.
               if (!std::holds_alternative<ParticleGlmbFilter>(t.filter)) {
                 throw py::value_error("depth needs a tracker built with a depth_model");
               }
-              image = gray_image(depth, "depth", keep);
-              if (image.depth() == CV_8U) {
-                throw py::type_error("depth must be float32 or float64 metres, got uint8");
-              }
+              image = depth_image(depth, "depth", keep);
             }
             {
               py::gil_scoped_release release;

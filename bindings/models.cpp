@@ -135,10 +135,7 @@ fy defaults to fx, (cx, cy) to the image centre ((width - 1)/2, (height - 1)/2).
           "log_ratio",
           [](const DepthLikelihood& d, const py::handle& depth, const py::handle& positions) {
             py::array keep;
-            const cv::Mat image = gray_image(depth, "depth", keep);
-            if (image.depth() == CV_8U) {
-              throw py::type_error("depth must be float32 or float64 metres, got uint8");
-            }
+            const cv::Mat image = depth_image(depth, "depth", keep);
             auto x = as_matrix(positions, "positions");
             if (x.shape(1) != 3) throw py::value_error("positions must have shape (N, 3)");
             Eigen::VectorXd out(x.shape(0));

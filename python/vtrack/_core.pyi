@@ -196,7 +196,7 @@ class GlmbTracker:
         depth_model: Optional[DepthLikelihood] = None,
         resample_threshold: float = 0.5,
         seed: int = 0,
-        depth_for_births: bool = False,
+        depth_for_births: bool = True,
         mask_detections: bool = True,
     ) -> None: ...
     def step(

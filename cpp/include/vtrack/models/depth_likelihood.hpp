@@ -74,23 +74,34 @@ struct DepthLikelihoodParams {
   // (2 d D - D^2) / (2 sigma^2), symmetric -- a pixel with the target's depth scores +D^2/(2 s^2),
   // a background pixel (d = 0) -D^2/(2 s^2) -- so a footprint scores positive exactly when more
   // than half its pixels look like the target, and (as |T(x)| ~ 1/D^2) the score of a person does
-  // not depend on their distance. With sigma_t << sigma_b (a "realistic" target noise of 0.1-0.2
-  // m), one background pixel inside T(x) costs D^2/(2 sigma_t^2) -- hundreds of nats -- so the
-  // rectangle's corners around a person's silhouette, or the feet removed by background
-  // subtraction, make the true state score below an empty footprint (measured on the scenario).
+  // not depend on their distance. With sigma_t << sigma_b (a "realistic" target noise of 0.1-0.3
+  // m) one background pixel inside T(x) -- a dropout, the feet removed by background subtraction,
+  // a footprint one pixel too wide -- costs D^2/(2 sigma_t^2), hundreds of nats, and kills a
+  // correctly placed track. The price of equal sigmas: D is only loosely constrained (a pixel
+  // with any depth above D/2 votes for the state), so a track bridging a burst drifts in D more
+  // than in X, Y, and a nearer person occluding a tracked one supports it.
   double sigma_target = 1.0;
   double sigma_background = 1.0;
   // Exponent on the eq. (4) ratio (see above). 3e-4 ~ "about 1 in 3000 footprint pixels is an
-  // independent observation": chosen on vtrack.rgbd.make_rgbd_scene (320 x 240) with
-  // benchmarks/rgbd_switching.py (2 seeds, among 1e-4, 2e-4, 3e-4). A person's footprint then
-  // scores about +4 to +6 nats (untempered 13000-20000), enough to outweigh log(1 - p_D) = -3 so
-  // a tracked person survives a burst of missed detections; an empty person-sized footprint
-  // scores about -9 (a track that lost its person dies); and the missed branch stays below a
-  // detection's log(p_D g / kappa) (~ +7), so detections are still preferred when present (the
-  // switching model never multiplies the detected branch by g2). Measured: 1e-4 barely bridges
-  // bursts (burst-frame coverage 0.18 vs 0.12 detection-only); 2e-4 gives 0.52, 3e-4 0.67 with
-  // the lowest OSPA and cardinality error (with ParticleParams::mask_detections; without it,
-  // duplicate tracks live on depth alone and the cardinality error rose to 5-8).
+  // independent observation". Measured on the scenario's depth images (3 seeds x 3 frames, 10/50/90
+  // percentiles): a person's true footprint scores +3.9 / +7.0 / +7.3 nats (untempered median
+  // 23000: the product over ~3000 pixels), enough to outweigh log(1 - p_D) = -3 so a tracked
+  // person survives a burst of missed detections; an empty person-sized footprint scores
+  // -8.9 / -8.6 / -4.7, so a track that lost its person dies; a 10 cm sideways error costs
+  // -2.9 / -2.4 / -0.2. The missed branch, log(1 - p_D) + ~7, stays at or below a detection's
+  // log(p_D g / kappa) (~ +7), so detections are still preferred when present (the switching
+  // model never multiplies the detected branch by g2). Chosen on vtrack.rgbd.make_rgbd_scene with
+  // benchmarks/rgbd_switching.py (5 seeds, medians; detection-only particle GLMB: OSPA 0.263,
+  // OSPA2 0.907, burst coverage 0.10, cardinality error 0.71, label switches / fragmentations
+  // 72 / 57 in total):
+  //   sigma_t, sigma_b  tempering  OSPA   OSPA2  burst cov.  card. err.  switches / frags (total)
+  //   1, 1              1e-4       0.248  0.891  0.18        0.66        84 / 60
+  //   1, 1              2e-4       0.189  0.844  0.46        0.46        86 / 75
+  //   1, 1              3e-4       0.180  0.861  0.63        0.40        90 / 86
+  //   1, 1              5e-4       0.183  0.882  0.64        0.43        107 / 90
+  //   0.5, 1            2e-4       0.247  0.943  0.21        0.68        152 / 123
+  //   0.3, 1            1e-4, 3e-4 0.30   0.96   0.05        0.81-0.85   156-178 / 145-172
+  // (measured with births scored without depth; the default, births with depth, differs little).
   double tempering = 3e-4;
   double min_depth = 0.1;  // states nearer than this (m) have an empty footprint
 };
