@@ -11,7 +11,8 @@ background): ``vtrack.MultiBernoulliTracker((width, height), seed=1)`` and ``.st
 frame; ``vtrack.mot`` writes MOTChallenge files, ``python -m vtrack.evaluate`` scores them,
 ``vtrack.synthetic`` makes scenes with exact ground truth. ``vtrack.GlmbTracker`` is the
 labelled RFS tracker (Gaussian delta-GLMB, scenarios in ``vtrack.scenarios``), built on
-``linear_assignment`` and Murty's k-best ``murty``; ``ospa``, ``ospa2`` and ``gospa`` score it.
+``linear_assignment``, Murty's k-best ``murty`` and the Gibbs sampler ``gibbs_assignments``;
+``ospa``, ``ospa2`` and ``gospa`` score it.
 
 >>> import numpy as np, vtrack
 >>> rng = vtrack.Rng(seed=1)
@@ -33,6 +34,7 @@ from ._core import (
     effective_sample_size,
     foreground_mask,
     Gaussian,
+    gibbs_assignments,
     GlmbEstimate,
     GlmbTracker,
     gospa,
@@ -73,6 +75,7 @@ __all__ = [
     "effective_sample_size",
     "foreground_mask",
     "Gaussian",
+    "gibbs_assignments",
     "GlmbEstimate",
     "GlmbTracker",
     "gospa",
