@@ -72,6 +72,32 @@ fewer than k feasible assignments exist (k' = 0 if none). Equal costs come in un
 all assignments are distinct. Raises ValueError for NaN or -inf entries, n > m or k <= 0.
 )doc");
 
+  m.def(
+      "gibbs_assignments",
+      [](const py::handle& cost, std::int64_t sweeps, const py::handle& rng) {
+        auto c = as_matrix(cost, "cost");
+        core::Rng storage;
+        core::Rng& engine = rng_from(rng, storage);
+        assign::SampledAssignments s;
+        {
+          py::gil_scoped_release release;
+          s = assign::gibbs_assignments(matrix_map(c), sweeps, engine);
+        }
+        return py::make_tuple(s.assignments, s.costs, s.visits);
+      },
+      py::arg("cost"), py::arg("sweeps"), py::arg("rng") = 0, R"doc(
+Distinct assignments of an n x m cost matrix (n <= m, +inf = forbidden) visited by a Gibbs sampler
+whose stationary distribution is proportional to exp(-total cost): the randomised alternative to
+Murty of Vo, Vo & Hoang (IEEE TSP 2017, section IV-B). The chain starts at the optimal assignment
+and runs `sweeps` states (one sweep resamples every row from its conditional).
+
+Returns (assignments, costs, visits): the k' <= sweeps distinct assignments (k' x n int64, each
+row's column), their totals in non-decreasing order, and how many states of the chain equalled
+each (visits / sweeps estimates the probabilities). k' = 0 for an infeasible matrix. rng: a
+vtrack.Rng (advanced in place) or an int seed. Raises ValueError for NaN or -inf entries, n > m
+or sweeps <= 0.
+)doc");
+
   py::class_<metrics::OspaResult>(m, "OspaResult",
                                   "An OSPA or OSPA(2) distance and its two components.")
       .def_readonly("distance", &metrics::OspaResult::distance)

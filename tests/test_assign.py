@@ -152,3 +152,44 @@ def test_threads_get_the_same_results():
         got = list(pool.map(lambda c: vtrack.murty(c, 50)[1], costs))
     for e, g in zip(expected, got):
         np.testing.assert_array_equal(e, g)
+
+
+def test_gibbs_visit_frequencies_match_the_assignment_weights():
+    """The chain's stationary distribution is pi(a) ~ exp(-cost(a)) (Vo, Vo & Hoang 2017, IV-B):
+    visit frequencies of 40 000 sweeps on a 3 x 5 matrix within 5 binomial sd (x3 for the chain's
+    autocorrelation) of the exact probabilities from enumeration."""
+    rng = np.random.default_rng(4)
+    cost = random_cost(rng, 3, 5, integer=False, p_inf=0.2) / 5.0
+    expected = all_assignments(cost)
+    weights = np.exp(-np.array([c for c, _ in expected]))
+    probability = dict(zip([tuple(a) for _, a in expected], weights / weights.sum()))
+    sweeps = 40_000
+    assignments, costs, visits = vtrack.gibbs_assignments(cost, sweeps, rng=1)
+    assert visits.sum() == sweeps and visits.dtype == np.int64
+    visited = {tuple(a): v for a, v in zip(assignments.tolist(), visits.tolist())}
+    assert set(visited) <= set(probability)
+    for a, p in probability.items():
+        sd = 3.0 * np.sqrt(p * (1 - p) / sweeps)
+        assert abs(visited.get(a, 0) / sweeps - p) <= 5 * sd + 1e-4, a
+
+
+def test_gibbs_results_are_distinct_sorted_and_start_at_the_optimum():
+    rng = np.random.default_rng(9)
+    for trial in range(10):
+        n = 1 + trial % 4
+        cost = random_cost(rng, n, n + 4, integer=trial % 2 == 0, p_inf=0.2)
+        expected = all_assignments(cost)
+        assignments, costs, visits = vtrack.gibbs_assignments(cost, 150, rng=trial)
+        if not expected:
+            assert assignments.shape == (0, n) and costs.size == 0
+            continue
+        assert costs[0] == pytest.approx(expected[0][0], abs=1e-9)
+        assert np.all(np.diff(costs) >= 0) and visits.sum() == 150
+        np.testing.assert_allclose(cost[np.arange(n), assignments].sum(axis=1), costs, atol=1e-9)
+        assert len({tuple(a) for a in assignments.tolist()}) == len(costs)
+    same = [vtrack.gibbs_assignments(cost, 100, rng=vtrack.Rng(3)) for _ in range(2)]
+    np.testing.assert_array_equal(same[0][0], same[1][0])
+    with pytest.raises(ValueError, match="sweeps"):
+        vtrack.gibbs_assignments(np.zeros((2, 3)), 0)
+    with pytest.raises(ValueError, match="NaN"):
+        vtrack.gibbs_assignments(np.array([[np.nan, 1.0]]), 5)

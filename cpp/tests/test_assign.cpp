@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <map>
 #include <set>
 #include <vector>
 
@@ -220,3 +221,106 @@ TEST(Murty, EmptyProblemHasOneAssignment) {
   EXPECT_EQ(r.costs[0], 0.0);
   EXPECT_EQ(r.assignments.cols(), 0);
 }
+
+// --- Gibbs sampler ---------------------------------------------------------------------------
+
+namespace {
+
+// Every feasible assignment with its probability under pi(g) ~ exp(-cost(g)).
+std::map<std::vector<int>, double> brute_force_distribution(const Eigen::MatrixXd& c) {
+  const int n = static_cast<int>(c.rows()), m = static_cast<int>(c.cols());
+  std::map<std::vector<int>, double> p;
+  std::vector<int> cols(n);
+  std::vector<char> used(m, 0);
+  std::function<void(int, double)> rec = [&](int i, double sum) {
+    if (i == n) {
+      p[cols] = std::exp(-sum);
+      return;
+    }
+    for (int j = 0; j < m; ++j) {
+      if (used[j] || c(i, j) == kInf) continue;
+      used[j] = 1;
+      cols[i] = j;
+      rec(i + 1, sum + c(i, j));
+      used[j] = 0;
+    }
+  };
+  rec(0, 0.0);
+  double total = 0.0;
+  for (const auto& [a, w] : p) total += w;
+  for (auto& [a, w] : p) w /= total;
+  return p;
+}
+
+TEST(GibbsAssignments, VisitFrequenciesConvergeToTheAssignmentWeights) {
+  // A 3 x 5 GLMB-like matrix with forbidden pairs: 40 000 sweeps, every feasible assignment's
+  // visit frequency within 5 binomial standard deviations (inflated 3x for the chain's
+  // autocorrelation) of its exact probability.
+  core::Rng rng(7);
+  Eigen::MatrixXd c = random_cost(rng, 3, 5, false, 0.2) / 5.0;
+  c(0, 4) = c(1, 3) = kInf;
+  const auto exact = brute_force_distribution(c);
+  const std::int64_t sweeps = 40000;
+  const SampledAssignments s = gibbs_assignments(c, sweeps, rng);
+  EXPECT_EQ(s.visits.sum(), sweeps);
+  std::map<std::vector<int>, std::int64_t> visited;
+  for (Eigen::Index r = 0; r < s.costs.size(); ++r) {
+    std::vector<int> a(3);
+    for (int i = 0; i < 3; ++i) a[i] = static_cast<int>(s.assignments(r, i));
+    visited[a] = s.visits[r];
+  }
+  for (const auto& [a, p] : exact) {
+    const double freq = static_cast<double>(visited[a]) / sweeps;
+    const double sd = 3.0 * std::sqrt(p * (1.0 - p) / sweeps);
+    EXPECT_NEAR(freq, p, 5.0 * sd + 1e-4) << "assignment " << a[0] << a[1] << a[2];
+  }
+  for (const auto& [a, count] : visited) EXPECT_TRUE(exact.count(a)) << "infeasible state";
+}
+
+TEST(GibbsAssignments, DistinctFeasibleSortedAndStartsFromTheOptimum) {
+  core::Rng rng(3);
+  for (int trial = 0; trial < 20; ++trial) {
+    const int n = 1 + trial % 4;
+    const Eigen::MatrixXd c = random_cost(rng, n, n + 3, trial % 2 == 0, 0.2);
+    const auto all = brute_force_costs(c);
+    const SampledAssignments s = gibbs_assignments(c, 200, rng);
+    if (all.empty()) {
+      EXPECT_EQ(s.costs.size(), 0);
+      continue;
+    }
+    ASSERT_GE(s.costs.size(), 1);
+    EXPECT_NEAR(s.costs[0], all.front(), 1e-9);  // the chain starts at the optimum
+    std::set<std::vector<std::int64_t>> seen;
+    for (Eigen::Index r = 0; r < s.costs.size(); ++r) {
+      if (r > 0) EXPECT_LE(s.costs[r - 1], s.costs[r]);
+      std::vector<std::int64_t> a(s.assignments.row(r).data(), s.assignments.row(r).data() + n);
+      EXPECT_TRUE(seen.insert(a).second) << "duplicate assignment";
+      EXPECT_EQ(std::set<std::int64_t>(a.begin(), a.end()).size(), static_cast<std::size_t>(n));
+      double total = 0.0;
+      for (int i = 0; i < n; ++i) total += c(i, a[i]);
+      EXPECT_NEAR(total, s.costs[r], 1e-9);
+      EXPECT_GE(s.visits[r], 1);
+    }
+    EXPECT_EQ(s.visits.sum(), 200);
+  }
+}
+
+TEST(GibbsAssignments, SameSeedSameResultAndBadInput) {
+  core::Rng a(11), b(11), rng(5);
+  const Eigen::MatrixXd c = random_cost(rng, 4, 9, false, 0.1);
+  const auto sa = gibbs_assignments(c, 300, a);
+  const auto sb = gibbs_assignments(c, 300, b);
+  EXPECT_EQ(sa.assignments, sb.assignments);
+  EXPECT_EQ(sa.visits, sb.visits);
+  EXPECT_THROW(gibbs_assignments(c, 0, a), InvalidArgument);
+  Eigen::MatrixXd bad = c;
+  bad(1, 2) = std::nan("");
+  EXPECT_THROW(gibbs_assignments(bad, 10, a), InvalidArgument);
+  EXPECT_THROW(gibbs_assignments(c.transpose(), 10, a), InvalidArgument);
+  // Infeasible: two rows that can only take column 0.
+  Eigen::MatrixXd infeasible = Eigen::MatrixXd::Constant(2, 3, kInf);
+  infeasible(0, 0) = infeasible(1, 0) = 1.0;
+  EXPECT_EQ(gibbs_assignments(infeasible, 10, a).costs.size(), 0);
+}
+
+}  // namespace

@@ -11,10 +11,11 @@ background): ``vtrack.MultiBernoulliTracker((width, height), seed=1)`` and ``.st
 frame; ``vtrack.mot`` writes MOTChallenge files, ``python -m vtrack.evaluate`` scores them,
 ``vtrack.synthetic`` makes scenes with exact ground truth. ``vtrack.GlmbTracker`` is the
 labelled RFS tracker (delta-GLMB with Gaussian or particle track densities, scenarios in
-``vtrack.scenarios``), built on ``linear_assignment`` and Murty's k-best ``murty``; with
-``particles=`` and a ``DepthLikelihood`` it is the RGB-D switching-observation tracker
-(``step(detections, depth=...)``, Kinect conversion ``kinect_raw_to_depth``, synthetic scenes in
-``vtrack.rgbd``); ``ospa``, ``ospa2`` and ``gospa`` score it.
+``vtrack.scenarios``), built on ``linear_assignment``, Murty's k-best ``murty`` and the Gibbs
+sampler ``gibbs_assignments``; with ``particles=`` and a ``DepthLikelihood`` it is the RGB-D
+switching-observation tracker (``step(detections, depth=...)``, Kinect conversion
+``kinect_raw_to_depth``, synthetic scenes in ``vtrack.rgbd``); ``ospa``, ``ospa2`` and ``gospa``
+score it.
 
 >>> import numpy as np, vtrack
 >>> rng = vtrack.Rng(seed=1)
@@ -37,6 +38,7 @@ from ._core import (
     effective_sample_size,
     foreground_mask,
     Gaussian,
+    gibbs_assignments,
     GlmbEstimate,
     GlmbTracker,
     gospa,
@@ -80,6 +82,7 @@ __all__ = [
     "effective_sample_size",
     "foreground_mask",
     "Gaussian",
+    "gibbs_assignments",
     "GlmbEstimate",
     "GlmbTracker",
     "gospa",

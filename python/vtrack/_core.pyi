@@ -223,6 +223,9 @@ def linear_assignment(
     cost: ArrayLike,
 ) -> Tuple[npt.NDArray[np.int64], npt.NDArray[np.int64]]: ...
 def murty(cost: ArrayLike, k: int) -> Tuple[npt.NDArray[np.int64], npt.NDArray[np.float64]]: ...
+def gibbs_assignments(
+    cost: ArrayLike, sweeps: int, rng: RngLike = 0
+) -> Tuple[npt.NDArray[np.int64], npt.NDArray[np.float64], npt.NDArray[np.int64]]: ...
 
 class OspaResult:
     @property

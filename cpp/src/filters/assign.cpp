@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <numeric>
 #include <queue>
 #include <string>
 #include <utility>
@@ -472,6 +474,88 @@ RankedAssignments murty(const Eigen::Ref<const Eigen::MatrixXd>& cost, std::int6
   check_cost(cost);
   if (k <= 0) throw InvalidArgument("k must be >= 1, got " + std::to_string(k));
   return Murty(cost).run(k);
+}
+
+SampledAssignments gibbs_assignments(const Eigen::Ref<const Eigen::MatrixXd>& cost,
+                                     std::int64_t sweeps, core::Rng& rng) {
+  check_cost(cost);
+  if (sweeps <= 0) throw InvalidArgument("sweeps must be >= 1, got " + std::to_string(sweeps));
+  const auto n = static_cast<int>(cost.rows());
+  const auto m = static_cast<int>(cost.cols());
+  SampledAssignments result;
+  Solver start(cost);
+  if (start.solve() >= 0) {  // infeasible: nothing to sample
+    result.assignments.resize(0, n);
+    result.costs.resize(0);
+    result.visits.resize(0);
+    return result;
+  }
+  // Row-major copy: each conditional reads one row.
+  const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> c = cost;
+  std::vector<int> state = start.col4row;
+  std::vector<int> row_of_col(static_cast<std::size_t>(m), -1);
+  for (int i = 0; i < n; ++i) row_of_col[static_cast<std::size_t>(state[i])] = i;
+
+  std::map<std::vector<int>, std::int64_t> visits;
+  std::vector<double> weight(static_cast<std::size_t>(m));
+  for (std::int64_t sweep = 0; sweep < sweeps; ++sweep) {
+    if (sweep > 0) {
+      for (int i = 0; i < n; ++i) {
+        // Conditional of row i given the others: its own column or any free one. The current
+        // column is always allowed and finite, so the conditional is never empty.
+        double lowest = kInf;
+        for (int j = 0; j < m; ++j) {
+          const int holder = row_of_col[static_cast<std::size_t>(j)];
+          if (holder < 0 || holder == i) lowest = std::min(lowest, c(i, j));
+        }
+        double total = 0.0;
+        for (int j = 0; j < m; ++j) {
+          const int holder = row_of_col[static_cast<std::size_t>(j)];
+          const double w = (holder < 0 || holder == i) ? std::exp(lowest - c(i, j)) : 0.0;
+          weight[static_cast<std::size_t>(j)] = w;
+          total += w;
+        }
+        const double target = rng.uniform() * total;
+        int chosen = state[i];
+        double running = 0.0;
+        for (int j = 0; j < m; ++j) {
+          const double w = weight[static_cast<std::size_t>(j)];
+          running += w;
+          if (w > 0.0 && target < running) {
+            chosen = j;
+            break;
+          }
+        }
+        row_of_col[static_cast<std::size_t>(state[i])] = -1;
+        row_of_col[static_cast<std::size_t>(chosen)] = i;
+        state[i] = chosen;
+      }
+    }
+    ++visits[state];
+  }
+
+  std::vector<std::pair<double, const std::pair<const std::vector<int>, std::int64_t>*>> order;
+  order.reserve(visits.size());
+  for (const auto& entry : visits) {
+    double total = 0.0;
+    for (int i = 0; i < n; ++i) total += c(i, entry.first[static_cast<std::size_t>(i)]);
+    order.emplace_back(total, &entry);
+  }
+  // Ties keep the map's (lexicographic) order, so the result does not depend on the sort's
+  // implementation.
+  std::stable_sort(order.begin(), order.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  const auto k = static_cast<Eigen::Index>(order.size());
+  result.assignments.resize(k, n);
+  result.costs.resize(k);
+  result.visits.resize(k);
+  for (Eigen::Index r = 0; r < k; ++r) {
+    result.costs[r] = order[static_cast<std::size_t>(r)].first;
+    result.visits[r] = order[static_cast<std::size_t>(r)].second->second;
+    const auto& a = order[static_cast<std::size_t>(r)].second->first;
+    for (int i = 0; i < n; ++i) result.assignments(r, i) = a[static_cast<std::size_t>(i)];
+  }
+  return result;
 }
 
 }  // namespace vtrack::assign

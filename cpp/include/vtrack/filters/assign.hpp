@@ -22,6 +22,8 @@
 
 #include <Eigen/Core>
 
+#include "vtrack/core/random.hpp"
+
 namespace vtrack::assign {
 
 // An optimal assignment with its certificate. `col_of_row[i]` is row i's column; `cost` the sum
@@ -48,5 +50,29 @@ struct RankedAssignments {
   Eigen::VectorXd costs;
 };
 RankedAssignments murty(const Eigen::Ref<const Eigen::MatrixXd>& cost, std::int64_t k);
+
+// The randomised alternative to Murty's ranking of Vo, Vo & Hoang (2017), "An efficient
+// implementation of the generalized labeled multi-Bernoulli filter", IEEE TSP 65(8), section
+// IV-B: a Gibbs sampler whose stationary distribution over the feasible assignments g is
+//   pi(g) proportional to exp(-sum_i cost(i, g_i)),
+// i.e. the GLMB hypothesis weights themselves, so high-weight assignments are visited first and
+// most often. One sweep resamples every row in turn from its conditional: the columns no other
+// row holds, with probability proportional to exp(-cost(i, c)). Vo et al. start from the all-
+// missed solution; we start from the optimal assignment (linear_assignment), so the best
+// assignment is always among the results and the chain starts in its mode.
+//
+// Runs `sweeps` states of the chain (the start and sweeps - 1 further sweeps) and returns the
+// k' <= sweeps distinct assignments visited in non-decreasing cost, with `visits[r]` the number of
+// states of the chain equal to assignment r (the visit frequencies estimate pi). Not the k best:
+// the cost of Murty's exactness is traded for O(sweeps n m) work. k' = 0 for an infeasible matrix.
+// Throws InvalidArgument for the bad `cost` of linear_assignment (except infeasibility) and for
+// sweeps <= 0.
+struct SampledAssignments {
+  Eigen::Matrix<std::int64_t, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> assignments;
+  Eigen::VectorXd costs;
+  Eigen::Matrix<std::int64_t, Eigen::Dynamic, 1> visits;
+};
+SampledAssignments gibbs_assignments(const Eigen::Ref<const Eigen::MatrixXd>& cost,
+                                     std::int64_t sweeps, core::Rng& rng);
 
 }  // namespace vtrack::assign
