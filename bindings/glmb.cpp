@@ -73,8 +73,9 @@ void bind_glmb(py::module_& m) {
   const GlmbParams defaults;
   const filters::ParticleParams particle_defaults;
   py::class_<GlmbTracker>(m, "GlmbTracker", R"doc(
-Labelled multi-object tracker: the delta-GLMB filter, in the joint prediction-update form of Vo, Vo & Hoang (IEEE TSP 2017) with Murty's ranked assignments
-(rgbd-glmb-switching-observation eqs. 5-8).
+Labelled multi-object tracker: the delta-GLMB filter, in the joint prediction-update form of
+Vo, Vo & Hoang (IEEE TSP 2017) with Murty's ranked assignments (rgbd-glmb-switching-observation
+eqs. 5-8).
 
 motion: LinearGaussianMotion; observation: LinearGaussianObservation; births: a list of
 (existence, mean, cov), one labelled Bernoulli birth component each (LMB birth).
@@ -95,6 +96,9 @@ Keyword parameters (defaults: the standard GLMB scenario's):
                         that z was assigned to a track (Reuter et al.'s LMB adaptive birth)
   adaptive_birth_rate   expected number of adaptive births per scan (lambda_B)
   adaptive_birth_max_existence  cap on one detection's birth existence
+  ranking               "murty" (the k best assignments per prior hypothesis, exact) or "gibbs"
+                        (Vo, Vo & Hoang's Gibbs sampler, as many sweeps as hypotheses requested;
+                        random, seeded by `seed`)
 Track densities: Gaussian (Kalman) by default. Particles when `particles` or `depth_model` is
 given (the paper's particle implementation):
   particles             particles per track (default 500 with a depth model)
@@ -102,7 +106,8 @@ given (the paper's particle implementation):
                         observation model -- a track a hypothesis leaves undetected is scored and
                         reweighted by the depth image (eq. 4) instead of (1 - p_D) alone
   resample_threshold    systematic resampling when N_eff < resample_threshold * particles
-  seed                  the particle filter's random engine (same seed, same tracks)
+  seed                  the random engine of the particle filter and of the Gibbs ranking (same
+                        seed, same tracks)
   depth_for_births      births' missed branch is scored by the depth image too (default True,
                         eq. 8's psi for every label; False: (1 - p_D) alone)
   mask_detections       blank the footprints of the scan's detections in the depth image before
@@ -110,7 +115,7 @@ given (the paper's particle implementation):
                         explained by the detection, so duplicate tracks cannot live on them;
                         False = eq. 4 on the raw image, as the paper)
 
-The Gaussian filter is deterministic (no random numbers). step() releases the GIL; one tracker
+The Gaussian filter with Murty's ranking is deterministic (no random numbers). step() releases the GIL; one tracker
 must not be stepped from two threads at once.
 )doc")
       .def(py::init([](const models::LinearGaussianMotion& motion,
@@ -120,7 +125,7 @@ must not be stepped from two threads at once.
                        int hypothesis_budget, int max_hypotheses, double prune_threshold,
                        double gate_threshold, const py::handle& adaptive_birth_cov,
                        double adaptive_birth_rate, double adaptive_birth_max_existence,
-                       std::optional<int> particles,
+                       const std::string& ranking, std::optional<int> particles,
                        std::optional<models::DepthLikelihood> depth_model,
                        double resample_threshold, std::uint64_t seed, bool depth_for_births,
                        bool mask_detections) {
@@ -139,6 +144,12 @@ must not be stepped from two threads at once.
              }
              p.adaptive_birth.expected_births = adaptive_birth_rate;
              p.adaptive_birth.max_existence = adaptive_birth_max_existence;
+             if (ranking != "murty" && ranking != "gibbs") {
+               throw py::value_error("ranking must be 'murty' or 'gibbs', got '" + ranking + "'");
+             }
+             p.ranking = ranking == "gibbs" ? filters::HypothesisRanking::gibbs
+                                            : filters::HypothesisRanking::murty;
+             p.seed = seed;
              if (!particles && !depth_model) {
                return GlmbTracker{GaussianGlmbFilter(motion, observation, births_from(births), p)};
              }
@@ -162,7 +173,7 @@ must not be stepped from two threads at once.
            py::arg("adaptive_birth_cov") = py::none(),
            py::arg("adaptive_birth_rate") = defaults.adaptive_birth.expected_births,
            py::arg("adaptive_birth_max_existence") = defaults.adaptive_birth.max_existence,
-           py::arg("particles") = py::none(), py::arg("depth_model") = py::none(),
+           py::arg("ranking") = "murty", py::arg("particles") = py::none(), py::arg("depth_model") = py::none(),
            py::arg("resample_threshold") = particle_defaults.resample_threshold,
            py::arg("seed") = particle_defaults.seed,
            py::arg("depth_for_births") = particle_defaults.depth_for_births,

@@ -192,6 +192,7 @@ class GlmbTracker:
         adaptive_birth_cov: Optional[ArrayLike] = None,
         adaptive_birth_rate: float = 0.1,
         adaptive_birth_max_existence: float = 0.03,
+        ranking: str = "murty",
         particles: Optional[int] = None,
         depth_model: Optional[DepthLikelihood] = None,
         resample_threshold: float = 0.5,

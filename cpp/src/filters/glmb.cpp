@@ -46,7 +46,8 @@ GlmbFilter<Tracks>::GlmbFilter(models::LinearGaussianMotion motion,
       motion_(std::move(motion)),
       observation_(std::move(observation)),
       births_(std::move(births)),
-      params_(params) {
+      params_(params),
+      ranking_rng_(params.seed) {
   const Eigen::Index x_dim = motion_.F.rows();
   if (motion_.F.cols() != x_dim || motion_.Q.rows() != x_dim || motion_.Q.cols() != x_dim) {
     throw InvalidArgument("motion model: F and Q must both be square of the state dimension");
@@ -225,7 +226,7 @@ void GlmbFilter<Tracks>::step(const Eigen::Ref<const Eigen::MatrixXd>& detection
       cost(i, m + i) = -(log_exists[r] + log_missed[r]);
       cost(i, m + n + i) = -log_absent[r];
     }
-    const assign::RankedAssignments ranked = assign::murty(cost, requested);
+    const RankedChoices ranked = rank(cost, requested);
     std::vector<int> tracks;
     for (Eigen::Index s = 0; s < ranked.costs.size(); ++s) {
       tracks.clear();
@@ -296,6 +297,17 @@ void GlmbFilter<Tracks>::step(const Eigen::Ref<const Eigen::MatrixXd>& detection
     std::sort(h.tracks.begin(), h.tracks.end());
   }
   hypotheses_ = std::move(updated);
+}
+
+template <class Tracks>
+typename GlmbFilter<Tracks>::RankedChoices GlmbFilter<Tracks>::rank(const Eigen::MatrixXd& cost,
+                                                                    std::int64_t requested) {
+  if (params_.ranking == HypothesisRanking::gibbs) {
+    assign::SampledAssignments s = assign::gibbs_assignments(cost, requested, ranking_rng_);
+    return {std::move(s.assignments), std::move(s.costs)};
+  }
+  assign::RankedAssignments r = assign::murty(cost, requested);
+  return {std::move(r.assignments), std::move(r.costs)};
 }
 
 template <class Tracks>

@@ -19,6 +19,7 @@
 
 #include <Eigen/Core>
 
+#include "vtrack/core/random.hpp"
 #include "vtrack/models/linear_gaussian.hpp"
 
 namespace vtrack::filters {
@@ -53,6 +54,16 @@ struct AdaptiveBirthParams {
   Eigen::MatrixXd cov;           // x_dim x x_dim; must be given when enabled
 };
 
+// How each prior hypothesis's posterior hypotheses are generated from its cost matrix.
+enum class HypothesisRanking {
+  // Murty's k best assignments (exact ranking; the paper's choice, the default).
+  murty,
+  // The Gibbs sampler of Vo, Vo & Hoang (2017) section IV-B (assign::gibbs_assignments): as many
+  // sweeps as hypotheses requested, the distinct assignments visited kept with their exact
+  // weights. Cheaper per hypothesis for large problems, random (seeded by GlmbParams::seed).
+  gibbs,
+};
+
 struct GlmbParams {
   double survival_probability = 0.99;   // p_S (eq. 6)
   double detection_probability = 0.98;  // p_D (eq. 8's psi)
@@ -69,6 +80,8 @@ struct GlmbParams {
   // +inf disables gating (exact but slower).
   double gate_threshold = 32.24;
   AdaptiveBirthParams adaptive_birth;
+  HypothesisRanking ranking = HypothesisRanking::murty;
+  std::uint64_t seed = 0;  // the Gibbs sampler's engine (unused by Murty's ranking)
 };
 
 // Labels of adaptive births: birth_index = (number of fixed births) + (index of the proposing
@@ -156,6 +169,13 @@ class GlmbFilter {
     double log_weight = 0.0;  // normalised over hypotheses
   };
 
+  // The posterior hypotheses of one prior hypothesis: Murty's k best or the Gibbs sampler's.
+  struct RankedChoices {
+    Eigen::Matrix<std::int64_t, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> assignments;
+    Eigen::VectorXd costs;
+  };
+  RankedChoices rank(const Eigen::MatrixXd& cost, std::int64_t requested);
+
   // Replaces adaptive_births_ by the births that `detections` propose for the next scan, given
   // each detection's posterior probability of having been assigned to a track.
   void propose_adaptive_births(const Eigen::Ref<const Eigen::MatrixXd>& detections,
@@ -171,6 +191,7 @@ class GlmbFilter {
   std::vector<int> adaptive_birth_detections_;
   std::vector<Track> tracks_;
   std::vector<Hypothesis> hypotheses_;
+  core::Rng ranking_rng_;
   int time_ = 0;
 };
 
