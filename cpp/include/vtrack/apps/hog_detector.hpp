@@ -1,0 +1,58 @@
+#pragma once
+// OpenCV's HOG people detector (Dalal & Triggs 2005, the default 64x128 people SVM of
+// cv::HOGDescriptor::getDefaultPeopleDetector), the RGB detector of
+// rgbd-glmb-switching-observation.txt (Section 4: "people are detected in the RGB image with a
+// HOG detector"), wrapped with documented parameters so the CLI, config files and Python share
+// them.
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <opencv2/objdetect.hpp>
+
+namespace vtrack::apps {
+
+struct HogParams {
+  // SVM margin a window needs to count as a hit (cv::HOGDescriptor::detectMultiScale's
+  // hitThreshold). 0 is OpenCV's default; the margin is the returned score.
+  double hit_threshold = 0.0;
+  // Window step in pixels, both axes (a multiple of the 8-px cell; OpenCV's default is the block
+  // stride, 8). Larger is faster and misses more.
+  int win_stride = 8;
+  // Pixels added around the image on each side, so people at the border still fill a window.
+  int padding = 8;
+  // Ratio between pyramid levels (OpenCV's default 1.05). The detector's window is 64x128 with
+  // the person ~48x96 inside it, so people smaller than ~96 px tall are found only when
+  // `upscale` > 1.
+  double scale = 1.05;
+  // Resize factor applied to the frame before detection (boxes are mapped back). 1 = off.
+  double upscale = 1.0;
+  // Minimum number of overlapping hits a grouped detection needs (detectMultiScale's
+  // finalThreshold / groupRectangles' groupThreshold, OpenCV's default 2).
+  int group_threshold = 2;
+  // Grouped detections scoring below this are dropped.
+  double min_score = 0.0;
+};
+
+// InvalidArgument naming the parameter and its value for an out-of-range one.
+void validate(const HogParams& params);
+
+struct ScoredBox {
+  double x = 0, y = 0, w = 0, h = 0;  // top-left corner and size, pixels
+  double score = 0;                   // SVM margin of the best window of the group
+};
+
+class HogPeopleDetector {
+ public:
+  explicit HogPeopleDetector(HogParams params = {});
+  // People in an 8-bit BGR (or grey) frame, best score first. InvalidArgument for an empty frame
+  // or another type. Not thread-safe on one instance (OpenCV's HOG keeps scratch state); use one
+  // detector per thread.
+  std::vector<ScoredBox> detect(const cv::Mat& frame) const;
+  const HogParams& params() const { return params_; }
+
+ private:
+  HogParams params_;
+  cv::HOGDescriptor hog_;
+};
+
+}  // namespace vtrack::apps
