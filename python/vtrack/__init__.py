@@ -29,6 +29,7 @@ NumPy arrays go in and out without copies where the layout allows; wrong dtypes 
 from ._core import (
     BernoulliComponent,
     bgr_to_rgi,
+    BoxTracker,
     close_square,
     effective_sample_size,
     foreground_mask,
@@ -37,6 +38,7 @@ from ._core import (
     GlmbTracker,
     gospa,
     GospaResult,
+    HogPeopleDetector,
     IntegralImage,
     InvalidArgument,
     IoError,
@@ -52,9 +54,11 @@ from ._core import (
     ospa2,
     OspaResult,
     probe_video,
+    read_detections,
     resample,
     Rng,
     Track,
+    track_detections,
     track_video,
     VideoInfo,
     __version__,
@@ -62,13 +66,13 @@ from ._core import (
 
 # Pure-Python modules built on the compiled ones above.
 from . import mot, scenarios, synthetic  # noqa: E402
-from .boxes import track_detections  # noqa: E402
 
 RESAMPLING_METHODS = ("multinomial", "stratified", "systematic", "residual")
 
 __all__ = [
     "BernoulliComponent",
     "bgr_to_rgi",
+    "BoxTracker",
     "close_square",
     "effective_sample_size",
     "foreground_mask",
@@ -77,6 +81,7 @@ __all__ = [
     "GlmbTracker",
     "gospa",
     "GospaResult",
+    "HogPeopleDetector",
     "IntegralImage",
     "InvalidArgument",
     "IoError",
@@ -93,6 +98,7 @@ __all__ = [
     "ospa2",
     "OspaResult",
     "probe_video",
+    "read_detections",
     "resample",
     "RESAMPLING_METHODS",
     "Rng",
