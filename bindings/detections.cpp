@@ -203,9 +203,10 @@ one frame's detections and returns its tracks. Deterministic; step() releases th
   py::class_<apps::HogPeopleDetector>(m, "HogPeopleDetector", R"doc(
 OpenCV's HOG people detector (Dalal & Triggs, the default 64x128 people SVM), the RGB detector of
 rgbd-glmb-switching-observation. Keyword parameters: hit_threshold (SVM margin of a hit, 0),
-win_stride (px, multiple of 8, 8), padding (px, multiple of 8, 8), scale (pyramid step, 1.05),
-upscale (resize before detecting, so people under ~96 px tall are found; 1 = off), group_threshold
-(overlapping hits a detection needs, 2), min_score (drop grouped detections scoring less, 0).
+win_stride (px, multiple of 8, 8), padding (px, multiple of 8, 8), scale (pyramid step, 1.1),
+upscale (resize before detecting, so people under ~96 px tall are found; 1.5, 1 = off),
+group_threshold (overlapping hits a detection needs, 2), min_score (drop grouped detections
+scoring less, 0). apps/hog_detector.hpp says why these defaults.
 )doc")
       .def(py::init([](const py::kwargs& kwargs) {
         HogParams params;
