@@ -206,7 +206,8 @@ rgbd-glmb-switching-observation. Keyword parameters: hit_threshold (SVM margin o
 win_stride (px, multiple of 8, 8), padding (px, multiple of 8, 8), scale (pyramid step, 1.1),
 upscale (resize before detecting, so people under ~96 px tall are found; 1.5, 1 = off),
 group_threshold (overlapping hits a detection needs, 2), min_score (drop grouped detections
-scoring less, 0). apps/hog_detector.hpp says why these defaults.
+scoring less, 0), person_fraction (returned box relative to the 64x128 window, 0.75: the person
+inside it). apps/hog_detector.hpp says why these defaults.
 )doc")
       .def(py::init([](const py::kwargs& kwargs) {
         HogParams params;

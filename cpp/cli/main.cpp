@@ -300,6 +300,9 @@ int run_track_glmb(const TrackOptions& o) {
     throw UsageError("track --method glmb needs a VIDEO or --detections FILE");
   } else if (!o.image_size.empty()) {
     throw UsageError("--image-size applies to --detections (a video has its own size)");
+  } else if (o.detector.empty()) {
+    // Explicit, so that a detector added later cannot silently change what a command line does.
+    throw UsageError("--method glmb on a VIDEO needs --detector hog (what gives the boxes)");
   }
   if (!o.detector.empty() && o.detector != "hog") {
     throw UsageError("--detector must be 'hog' (got '" + o.detector + "')");
@@ -398,7 +401,7 @@ const std::vector<Command>& commands() {
        "track people: KDE background + multi-Bernoulli TBD filter (mb), or detections + GLMB",
        "vtrack track VIDEO --out TRACKS [--method mb] [--render OUT.mp4] [--config FILE]\n"
        "                    [--seed N] [--set name=value ...]\n"
-       "       vtrack track VIDEO --method glmb [--detector hog] --out TRACKS [--render OUT.mp4]\n"
+       "       vtrack track VIDEO --method glmb --detector hog --out TRACKS [--render OUT.mp4]\n"
        "                    [--save-detections DET] [--config FILE] [--set name=value ...]\n"
        "       vtrack track --detections DET --method glmb --out TRACKS [--image-size WxH]\n"
        "                    [--config FILE] [--set name=value ...]\n\n"
@@ -410,16 +413,17 @@ const std::vector<Command>& commands() {
        "                   size), from a MOTChallenge det file or from HOG people detections\n"
        "  --detections DET MOTChallenge det rows frame,id,x,y,w,h[,conf,...] (frames from 1)\n"
        "  --image-size WxH image size for the clutter model (default: the extent of the boxes)\n"
-       "  --detector hog   OpenCV's HOG people detector on every frame (the default)\n"
+       "  --detector hog   OpenCV's HOG people detector on every frame (required with a VIDEO)\n"
        "  --save-detections DET  also write the detector's boxes as MOTChallenge det rows\n"
        "  --render FILE    also write the video with each track's box in its own colour\n"
        "  --config FILE    YAML or JSON. mb: sections seed, background (n_samples, period,\n"
        "                   sigma_r, sigma_g, sigma_I, closing, threads) and tracker (delta_f,\n"
        "                   delta_b, closing_size, sigma_x, ..., see vtrack.MultiBernoulliTracker\n"
        "                   .default_params() in Python); glmb: sections detector (hit_threshold,\n"
-       "                   win_stride, padding, scale, upscale, group_threshold, min_score) and\n"
-       "                   tracker (detection_probability, clutter_rate, sigma_accel, ..., see\n"
-       "                   vtrack.box_tracker_defaults() in Python)\n"
+       "                   win_stride, padding, scale, upscale, group_threshold, min_score,\n"
+       "                   person_fraction) and\n"
+       "                   tracker (detection_probability, clutter_rate, sigma_accel, ...; see\n"
+       "                   vtrack.BoxTracker.default_params() in Python)\n"
        "  --seed N         mb's random seed (default 0): the same seed gives the same tracks\n"
        "  --set name=value override one parameter of a config section (repeatable)",
        run_track},

@@ -375,6 +375,7 @@ class HogPeopleDetector:
         upscale: float = ...,
         group_threshold: int = ...,
         min_score: float = ...,
+        person_fraction: float = ...,
     ) -> None: ...
     def detect(self, frame: npt.NDArray[np.uint8]) -> npt.NDArray[np.float64]: ...
     @property

@@ -34,6 +34,10 @@ void validate(const HogParams& p) {
   if (!std::isfinite(p.min_score)) {
     throw InvalidArgument("min_score must be finite, got " + std::to_string(p.min_score));
   }
+  if (!(p.person_fraction > 0 && p.person_fraction <= 1)) {
+    throw InvalidArgument("person_fraction must lie in (0, 1], got " +
+                          std::to_string(p.person_fraction));
+  }
 }
 
 HogPeopleDetector::HogPeopleDetector(HogParams params) : params_(params) {
@@ -60,8 +64,11 @@ std::vector<ScoredBox> HogPeopleDetector::detect(const cv::Mat& frame) const {
   for (std::size_t i = 0; i < found.size(); ++i) {
     const double score = i < weights.size() ? weights[i] : 0.0;
     if (score < params_.min_score) continue;
-    out.push_back({found[i].x * back, found[i].y * back, found[i].width * back,
-                   found[i].height * back, score});
+    // The person's box: the window scaled by person_fraction about its centre, in frame pixels.
+    const double w = found[i].width * back, h = found[i].height * back;
+    const double cx = found[i].x * back + w / 2, cy = found[i].y * back + h / 2;
+    const double pw = w * params_.person_fraction, ph = h * params_.person_fraction;
+    out.push_back({cx - pw / 2, cy - ph / 2, pw, ph, score});
   }
   std::stable_sort(out.begin(), out.end(),
                    [](const ScoredBox& a, const ScoredBox& b) { return a.score > b.score; });

@@ -104,7 +104,7 @@ const std::vector<std::pair<std::string, Field<HogParams>>>& hog_fields() {
       {"hit_threshold", F{&P::hit_threshold}}, {"win_stride", F{&P::win_stride}},
       {"padding", F{&P::padding}},             {"scale", F{&P::scale}},
       {"upscale", F{&P::upscale}},             {"group_threshold", F{&P::group_threshold}},
-      {"min_score", F{&P::min_score}},
+      {"min_score", F{&P::min_score}},         {"person_fraction", F{&P::person_fraction}},
   };
   return table;
 }
