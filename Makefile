@@ -46,6 +46,7 @@ bench: $(VENV)/.vtrack-installed $(VENV)/.bench-deps $(VIDEO)
 	$(PY) benchmarks/bgs_quality.py --out $(DEMO_OUT)/bgs_contact_sheet.png
 	$(PY) benchmarks/multi_bernoulli.py
 	$(PY) benchmarks/pets09.py
+	$(PY) benchmarks/detections.py
 	$(PY) benchmarks/track_video.py
 
 build: $(VENV)/.vtrack-installed

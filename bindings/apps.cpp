@@ -1,5 +1,4 @@
 // Bindings of vtrack::apps: video input.
-#include <algorithm>
 #include <filesystem>
 
 #include <optional>
@@ -7,28 +6,12 @@
 #include <pybind11/stl/filesystem.h>
 
 #include "common.hpp"
+#include "params.hpp"
 #include "vtrack/apps/parameters.hpp"
 #include "vtrack/apps/track_video.hpp"
 #include "vtrack/apps/video_source.hpp"
 
 namespace vtrack::bindings {
-namespace {
-
-// Sets keyword parameters on a parameter struct by name (apps/parameters.hpp), TypeError for an
-// unknown name or a value of the wrong kind.
-template <typename Params>
-void set_from_kwargs(Params& params, const py::dict& values, const char* what) {
-  const auto defaults = apps::parameter_values(params);
-  for (const auto& item : values) {
-    const std::string name = py::str(item.first).cast<std::string>();
-    const auto it = std::find_if(defaults.begin(), defaults.end(),
-                                 [&](const auto& d) { return d.first == name; });
-    if (it == defaults.end()) throw py::type_error(std::string("unknown ") + what + " parameter '" + name + "'");
-    apps::set_parameter(params, name, parameter_from_python(name, item.second, it->second));
-  }
-}
-
-}  // namespace
 
 void bind_apps(py::module_& m) {
   py::class_<apps::VideoInfo>(m, "VideoInfo", "What `probe_video` found.")

@@ -7,12 +7,15 @@
 #include <iostream>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <unistd.h>
 
 #include "vtrack/apps/background_subtraction.hpp"
+#include "vtrack/apps/detection_file.hpp"
 #include "vtrack/apps/parameters.hpp"
+#include "vtrack/apps/track_detections.hpp"
 #include "vtrack/apps/track_video.hpp"
 #include "vtrack/apps/video_source.hpp"
 #include "vtrack/core/errors.hpp"
@@ -204,63 +207,176 @@ vtrack::apps::ParameterValue parse_value(const std::string& text) {
   return text;
 }
 
-int run_track(const std::vector<std::string>& args) {
-  std::string output, render, method = "mb";
+// The options of `vtrack track`, whichever method.
+struct TrackOptions {
+  std::string input, output, render, method = "mb", config, detections, detector,
+      save_detections, image_size;
   std::vector<std::string> settings;
-  std::string config;
   long long seed = -1;
-  const std::string input = walk_arguments("track", args, [&](const std::string& a, const std::string& value) {
-    if (a == "--out") {
-      output = value;
-    } else if (a == "--method") {
-      method = value;
-    } else if (a == "--render") {
-      render = value;
-    } else if (a == "--config") {
-      config = value;
-    } else if (a == "--seed") {
-      seed = parse_int(a, value);
-      if (seed < 0) throw UsageError("--seed must be >= 0, got " + value);
-    } else if (a == "--set") {
-      settings.push_back(value);
-    } else {
-      throw UsageError("unknown option '" + a + "'");
-    }
-  });
-  if (method != "mb") throw UsageError("--method must be 'mb' (got '" + method + "')");
-  if (input.empty()) throw UsageError("track needs a VIDEO (or image folder)");
-  if (output.empty()) throw UsageError("track needs --out TRACKS (MOTChallenge text)");
-  if (!render.empty() && !vtrack::apps::is_video_output(render)) {
-    throw UsageError("--render must name a .avi, .mp4 or .mkv file, got '" + render + "'");
-  }
-  vtrack::apps::MbPipelineParams params;
-  if (!config.empty()) vtrack::apps::load_pipeline_config(config, params);
-  if (seed >= 0) params.seed = static_cast<std::uint64_t>(seed);
+};
+
+// Applies each `--set name=value` with the first setter that knows the name.
+void apply_settings(
+    const std::vector<std::string>& settings,
+    const std::vector<std::function<bool(const std::string&, const vtrack::apps::ParameterValue&)>>&
+        setters) {
   for (const auto& setting : settings) {
     const std::size_t eq = setting.find('=');
     if (eq == std::string::npos) throw UsageError("--set expects name=value, got '" + setting + "'");
     const std::string name = setting.substr(0, eq);
     const auto value = parse_value(setting.substr(eq + 1));
-    if (!vtrack::apps::set_parameter(params.background, name, value) &&
-        !vtrack::apps::set_parameter(params.tracker, name, value)) {
-      throw UsageError("--set: unknown parameter '" + name + "'");
+    bool known = false;
+    for (const auto& set : setters) {
+      if ((known = set(name, value))) break;
     }
+    if (!known) throw UsageError("--set: unknown parameter '" + name + "'");
   }
+}
+
+template <typename Params>
+std::function<bool(const std::string&, const vtrack::apps::ParameterValue&)> setter(Params& p) {
+  return [&p](const std::string& name, const vtrack::apps::ParameterValue& value) {
+    return vtrack::apps::set_parameter(p, name, value);
+  };
+}
+
+// Runs `validate` on parameters assembled from the command line: a bad value is a usage error.
+template <typename Validate>
+void validate_usage(const Validate& validate) {
   try {
-    vtrack::image::validate(params.background);
-    vtrack::filters::validate(params.tracker);
+    validate();
   } catch (const vtrack::InvalidArgument& e) {
     throw UsageError(e.what());
   }
+}
+
+int run_track_mb(const TrackOptions& o) {
+  for (const auto& [flag, value] : {std::pair{"--detections", o.detections},
+                                    {"--detector", o.detector},
+                                    {"--save-detections", o.save_detections},
+                                    {"--image-size", o.image_size}}) {
+    if (!value.empty()) throw UsageError(std::string(flag) + " needs --method glmb");
+  }
+  if (o.input.empty()) throw UsageError("track needs a VIDEO (or image folder)");
+  vtrack::apps::MbPipelineParams params;
+  if (!o.config.empty()) vtrack::apps::load_pipeline_config(o.config, params);
+  if (o.seed >= 0) params.seed = static_cast<std::uint64_t>(o.seed);
+  apply_settings(o.settings, {setter(params.background), setter(params.tracker)});
+  validate_usage([&] {
+    vtrack::image::validate(params.background);
+    vtrack::filters::validate(params.tracker);
+  });
   ProgressLine progress("track");
-  const auto rows = vtrack::apps::track_video_mb(input, params, render, progress.callback());
+  const auto rows = vtrack::apps::track_video_mb(o.input, params, o.render, progress.callback());
   progress.finish();
   // Written only once the whole video is tracked, so a failure leaves no tracks file.
-  vtrack::apps::write_mot(output, rows);
-  std::cout << "wrote " << rows.size() << " track rows to " << output;
-  if (!render.empty()) std::cout << " and the annotated video to " << render;
+  vtrack::apps::write_mot(o.output, rows);
+  std::cout << "wrote " << rows.size() << " track rows to " << o.output;
+  if (!o.render.empty()) std::cout << " and the annotated video to " << o.render;
   std::cout << "\n";
   return 0;
+}
+
+// "WxH" with positive integers.
+std::pair<double, double> parse_image_size(const std::string& text) {
+  const std::size_t x = text.find('x');
+  if (x == std::string::npos) throw UsageError("--image-size expects WxH, got '" + text + "'");
+  const int w = parse_int("--image-size", text.substr(0, x));
+  const int h = parse_int("--image-size", text.substr(x + 1));
+  if (w <= 0 || h <= 0) throw UsageError("--image-size must be positive, got '" + text + "'");
+  return {w, h};
+}
+
+int run_track_glmb(const TrackOptions& o) {
+  if (o.seed >= 0) throw UsageError("--seed does not apply to --method glmb (it is deterministic)");
+  if (!o.detections.empty()) {
+    if (!o.input.empty()) throw UsageError("give either a VIDEO or --detections, not both");
+    for (const auto& [flag, value] : {std::pair{"--detector", o.detector},
+                                      {"--render", o.render},
+                                      {"--save-detections", o.save_detections}}) {
+      if (!value.empty()) throw UsageError(std::string(flag) + " needs a VIDEO, not --detections");
+    }
+  } else if (o.input.empty()) {
+    throw UsageError("track --method glmb needs a VIDEO or --detections FILE");
+  } else if (!o.image_size.empty()) {
+    throw UsageError("--image-size applies to --detections (a video has its own size)");
+  } else if (o.detector.empty()) {
+    // Explicit, so that a detector added later cannot silently change what a command line does.
+    throw UsageError("--method glmb on a VIDEO needs --detector hog (what gives the boxes)");
+  }
+  if (!o.detector.empty() && o.detector != "hog") {
+    throw UsageError("--detector must be 'hog' (got '" + o.detector + "')");
+  }
+  vtrack::apps::GlmbPipelineParams params;
+  if (!o.config.empty()) vtrack::apps::load_pipeline_config(o.config, params);
+  apply_settings(o.settings, {setter(params.detector), setter(params.tracker)});
+  validate_usage([&] {
+    vtrack::apps::validate(params.detector);
+    vtrack::apps::validate(params.tracker);
+  });
+  ProgressLine progress("track");
+  std::vector<vtrack::apps::TrackRow> rows;
+  if (!o.detections.empty()) {
+    const auto size = o.image_size.empty() ? std::pair<double, double>{} : parse_image_size(o.image_size);
+    const auto detections = vtrack::apps::read_detections(o.detections);
+    const auto [width, height] =
+        o.image_size.empty() ? vtrack::apps::detections_extent(detections) : size;
+    rows = vtrack::apps::track_detections(detections, width, height, params.tracker, 0,
+                                          progress.callback());
+  } else {
+    auto result = vtrack::apps::track_video_glmb(o.input, params.detector, params.tracker,
+                                                 o.render, progress.callback());
+    rows = std::move(result.tracks);
+    if (!o.save_detections.empty()) {
+      vtrack::apps::write_detections(o.save_detections, result.detections);
+    }
+  }
+  progress.finish();
+  // Written only once everything is tracked, so a failure leaves no tracks file.
+  vtrack::apps::write_mot(o.output, rows);
+  std::cout << "wrote " << rows.size() << " track rows to " << o.output;
+  if (!o.render.empty()) std::cout << ", the annotated video to " << o.render;
+  if (!o.save_detections.empty()) std::cout << ", the detections to " << o.save_detections;
+  std::cout << "\n";
+  return 0;
+}
+
+int run_track(const std::vector<std::string>& args) {
+  TrackOptions o;
+  o.input = walk_arguments("track", args, [&](const std::string& a, const std::string& value) {
+    if (a == "--out") {
+      o.output = value;
+    } else if (a == "--method") {
+      o.method = value;
+    } else if (a == "--render") {
+      o.render = value;
+    } else if (a == "--config") {
+      o.config = value;
+    } else if (a == "--seed") {
+      o.seed = parse_int(a, value);
+      if (o.seed < 0) throw UsageError("--seed must be >= 0, got " + value);
+    } else if (a == "--set") {
+      o.settings.push_back(value);
+    } else if (a == "--detections") {
+      o.detections = value;
+    } else if (a == "--detector") {
+      o.detector = value;
+    } else if (a == "--save-detections") {
+      o.save_detections = value;
+    } else if (a == "--image-size") {
+      o.image_size = value;
+    } else {
+      throw UsageError("unknown option '" + a + "'");
+    }
+  });
+  if (o.method != "mb" && o.method != "glmb") {
+    throw UsageError("--method must be 'mb' or 'glmb' (got '" + o.method + "')");
+  }
+  if (o.output.empty()) throw UsageError("track needs --out TRACKS (MOTChallenge text)");
+  if (!o.render.empty() && !vtrack::apps::is_video_output(o.render)) {
+    throw UsageError("--render must name a .avi, .mp4 or .mkv file, got '" + o.render + "'");
+  }
+  return o.method == "mb" ? run_track_mb(o) : run_track_glmb(o);
 }
 
 const std::vector<Command>& commands() {
@@ -281,20 +397,35 @@ const std::vector<Command>& commands() {
        "  --closing K      side of the square closing y, 0 = off (default 3)\n"
        "  --threads T      0 = OpenCV default, 1 = single thread (default 0)",
        run_bgs},
-      {"track", "track people in a video: KDE background + multi-Bernoulli TBD filter",
+      {"track",
+       "track people: KDE background + multi-Bernoulli TBD filter (mb), or detections + GLMB",
        "vtrack track VIDEO --out TRACKS [--method mb] [--render OUT.mp4] [--config FILE]\n"
-       "                    [--seed N] [--set name=value ...]\n\n"
+       "                    [--seed N] [--set name=value ...]\n"
+       "       vtrack track VIDEO --method glmb --detector hog --out TRACKS [--render OUT.mp4]\n"
+       "                    [--save-detections DET] [--config FILE] [--set name=value ...]\n"
+       "       vtrack track --detections DET --method glmb --out TRACKS [--image-size WxH]\n"
+       "                    [--config FILE] [--set name=value ...]\n\n"
        "  VIDEO            a video file or a folder of images\n"
        "  --out TRACKS     MOTChallenge text: frame,id,x,y,w,h,conf,-1,-1,-1 (frames from 1,\n"
        "                   conf = existence probability); written only when tracking succeeded\n"
        "  --method mb      the multi-Bernoulli track-before-detect tracker (mb-tbd paper)\n"
+       "  --method glmb    the delta-GLMB tracker on image boxes (state: box centre, velocity,\n"
+       "                   size), from a MOTChallenge det file or from HOG people detections\n"
+       "  --detections DET MOTChallenge det rows frame,id,x,y,w,h[,conf,...] (frames from 1)\n"
+       "  --image-size WxH image size for the clutter model (default: the extent of the boxes)\n"
+       "  --detector hog   OpenCV's HOG people detector on every frame (required with a VIDEO)\n"
+       "  --save-detections DET  also write the detector's boxes as MOTChallenge det rows\n"
        "  --render FILE    also write the video with each track's box in its own colour\n"
-       "  --config FILE    YAML or JSON with sections seed, background (n_samples, period,\n"
+       "  --config FILE    YAML or JSON. mb: sections seed, background (n_samples, period,\n"
        "                   sigma_r, sigma_g, sigma_I, closing, threads) and tracker (delta_f,\n"
        "                   delta_b, closing_size, sigma_x, ..., see vtrack.MultiBernoulliTracker\n"
-       "                   .default_params() in Python)\n"
-       "  --seed N         random seed (default 0): the same seed gives the same tracks\n"
-       "  --set name=value override one background or tracker parameter (repeatable)",
+       "                   .default_params() in Python); glmb: sections detector (hit_threshold,\n"
+       "                   win_stride, padding, scale, upscale, group_threshold, min_score,\n"
+       "                   person_fraction) and\n"
+       "                   tracker (detection_probability, clutter_rate, sigma_accel, ...; see\n"
+       "                   vtrack.BoxTracker.default_params() in Python)\n"
+       "  --seed N         mb's random seed (default 0): the same seed gives the same tracks\n"
+       "  --set name=value override one parameter of a config section (repeatable)",
        run_track},
   };
   return table;

@@ -33,6 +33,7 @@ NumPy arrays go in and out without copies where the layout allows; wrong dtypes 
 from ._core import (
     BernoulliComponent,
     bgr_to_rgi,
+    BoxTracker,
     close_square,
     DepthLikelihood,
     effective_sample_size,
@@ -43,6 +44,7 @@ from ._core import (
     GlmbTracker,
     gospa,
     GospaResult,
+    HogPeopleDetector,
     IntegralImage,
     InvalidArgument,
     IoError,
@@ -60,9 +62,11 @@ from ._core import (
     ospa2,
     OspaResult,
     probe_video,
+    read_detections,
     resample,
     Rng,
     Track,
+    track_detections,
     track_video,
     VideoInfo,
     __version__,
@@ -70,13 +74,13 @@ from ._core import (
 
 # Pure-Python modules built on the compiled ones above.
 from . import mot, rgbd, scenarios, synthetic  # noqa: E402
-from .boxes import track_detections  # noqa: E402
 
 RESAMPLING_METHODS = ("multinomial", "stratified", "systematic", "residual")
 
 __all__ = [
     "BernoulliComponent",
     "bgr_to_rgi",
+    "BoxTracker",
     "close_square",
     "DepthLikelihood",
     "effective_sample_size",
@@ -87,6 +91,7 @@ __all__ = [
     "GlmbTracker",
     "gospa",
     "GospaResult",
+    "HogPeopleDetector",
     "IntegralImage",
     "InvalidArgument",
     "IoError",
@@ -105,6 +110,7 @@ __all__ = [
     "ospa2",
     "OspaResult",
     "probe_video",
+    "read_detections",
     "resample",
     "RESAMPLING_METHODS",
     "rgbd",

@@ -368,3 +368,77 @@ def track_video(
     background: Optional[Dict[str, Any]] = None,
     **tracker: Any,
 ) -> npt.NDArray[np.float64]: ...
+
+# ---- detection-driven tracking ------------------------------------------------------------------
+
+def read_detections(
+    path: Union[str, PathLike[str]], min_confidence: float = ...
+) -> npt.NDArray[np.float64]: ...
+
+def track_detections(
+    detections: Union[str, PathLike[str], ArrayLike],
+    image_size: Optional[Tuple[float, float]] = None,
+    *,
+    last_frame: int = 0,
+    detection_probability: float = ...,
+    survival_probability: float = ...,
+    clutter_rate: float = ...,
+    sigma_accel: float = ...,
+    sigma_size: float = ...,
+    detection_sd_centre: float = ...,
+    detection_sd_size: float = ...,
+    birth_sd_centre: float = ...,
+    birth_sd_velocity: float = ...,
+    birth_sd_size: float = ...,
+    birth_rate: float = ...,
+    birth_max_existence: float = ...,
+    hypothesis_budget: int = ...,
+    gate_threshold: float = ...,
+    min_confidence: float = ...,
+) -> npt.NDArray[np.float64]: ...
+
+class BoxTracker:
+    def __init__(
+        self,
+        image_size: Tuple[float, float],
+        *,
+        detection_probability: float = ...,
+        survival_probability: float = ...,
+        clutter_rate: float = ...,
+        sigma_accel: float = ...,
+        sigma_size: float = ...,
+        detection_sd_centre: float = ...,
+        detection_sd_size: float = ...,
+        birth_sd_centre: float = ...,
+        birth_sd_velocity: float = ...,
+        birth_sd_size: float = ...,
+        birth_rate: float = ...,
+        birth_max_existence: float = ...,
+        hypothesis_budget: int = ...,
+        gate_threshold: float = ...,
+        min_confidence: float = ...,
+    ) -> None: ...
+    def step(self, boxes: ArrayLike) -> npt.NDArray[np.float64]: ...
+    @property
+    def frame(self) -> int: ...
+    @staticmethod
+    def default_params() -> Dict[str, Any]: ...
+
+class HogPeopleDetector:
+    def __init__(
+        self,
+        *,
+        hit_threshold: float = ...,
+        win_stride: int = ...,
+        padding: int = ...,
+        scale: float = ...,
+        upscale: float = ...,
+        group_threshold: int = ...,
+        min_score: float = ...,
+        person_fraction: float = ...,
+    ) -> None: ...
+    def detect(self, frame: npt.NDArray[np.uint8]) -> npt.NDArray[np.float64]: ...
+    @property
+    def params(self) -> Dict[str, Any]: ...
+    @staticmethod
+    def default_params() -> Dict[str, Any]: ...

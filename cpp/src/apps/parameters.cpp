@@ -1,6 +1,10 @@
 #include "vtrack/apps/parameters.hpp"
 
+#include <algorithm>
+#include <filesystem>
 #include <type_traits>
+
+#include <opencv2/core.hpp>
 
 #include "vtrack/core/errors.hpp"
 
@@ -66,6 +70,41 @@ const std::vector<std::pair<std::string, Field<KdeBackgroundParams>>>& kde_field
       {"n_samples", F{&P::n_samples}}, {"period", F{&P::period}},   {"sigma_r", F{&P::sigma_r}},
       {"sigma_g", F{&P::sigma_g}},     {"sigma_I", F{&P::sigma_I}}, {"closing", F{&P::closing}},
       {"threads", F{&P::threads}},
+  };
+  return table;
+}
+
+const std::vector<std::pair<std::string, Field<BoxTrackerParams>>>& box_fields() {
+  using P = BoxTrackerParams;
+  using F = Field<P>;
+  static const std::vector<std::pair<std::string, F>> table = {
+      {"detection_probability", F{&P::detection_probability}},
+      {"survival_probability", F{&P::survival_probability}},
+      {"clutter_rate", F{&P::clutter_rate}},
+      {"sigma_accel", F{&P::sigma_accel}},
+      {"sigma_size", F{&P::sigma_size}},
+      {"detection_sd_centre", F{&P::detection_sd_centre}},
+      {"detection_sd_size", F{&P::detection_sd_size}},
+      {"birth_sd_centre", F{&P::birth_sd_centre}},
+      {"birth_sd_velocity", F{&P::birth_sd_velocity}},
+      {"birth_sd_size", F{&P::birth_sd_size}},
+      {"birth_rate", F{&P::birth_rate}},
+      {"birth_max_existence", F{&P::birth_max_existence}},
+      {"hypothesis_budget", F{&P::hypothesis_budget}},
+      {"gate_threshold", F{&P::gate_threshold}},
+      {"min_confidence", F{&P::min_confidence}},
+  };
+  return table;
+}
+
+const std::vector<std::pair<std::string, Field<HogParams>>>& hog_fields() {
+  using P = HogParams;
+  using F = Field<P>;
+  static const std::vector<std::pair<std::string, F>> table = {
+      {"hit_threshold", F{&P::hit_threshold}}, {"win_stride", F{&P::win_stride}},
+      {"padding", F{&P::padding}},             {"scale", F{&P::scale}},
+      {"upscale", F{&P::upscale}},             {"group_threshold", F{&P::group_threshold}},
+      {"min_score", F{&P::min_score}},         {"person_fraction", F{&P::person_fraction}},
   };
   return table;
 }
@@ -145,7 +184,68 @@ bool set_in(Params& params, const Table& table, const std::string& name, const P
   return false;
 }
 
+ParameterValue node_value(const std::string& name, const cv::FileNode& node) {
+  if (node.isInt()) return static_cast<long long>(static_cast<int>(node));
+  if (node.isReal()) return static_cast<double>(node);
+  if (node.isString()) {
+    const std::string s = static_cast<std::string>(node);
+    if (s == "true") return true;
+    if (s == "false") return false;
+    return s;
+  }
+  throw InvalidArgument("parameter " + name + " must be a number, true/false or a name");
+}
+
 }  // namespace
+
+ConfigFile read_config_file(const std::string& path, const std::vector<std::string>& sections,
+                            bool allow_seed) {
+  if (!std::filesystem::is_regular_file(path)) throw IoError("no such config file: '" + path + "'");
+  cv::FileStorage fs;
+  try {
+    fs.open(path, cv::FileStorage::READ);
+  } catch (const cv::Exception& e) {
+    throw IoError("cannot parse config file '" + path + "': " + e.err);
+  }
+  if (!fs.isOpened()) throw IoError("cannot parse config file '" + path + "' (YAML or JSON)");
+  std::string expected = allow_seed ? "seed" : "";
+  for (const auto& s : sections) expected += (expected.empty() ? "" : ", ") + s;
+  ConfigFile config;
+  config.path = path;
+  for (const auto& node : fs.root()) {
+    const std::string key = node.name();
+    if (allow_seed && key == "seed") {
+      if (!node.isInt() || static_cast<int>(node) < 0) {
+        throw InvalidArgument("config seed must be a non-negative integer");
+      }
+      config.seed = static_cast<std::uint64_t>(static_cast<int>(node));
+      continue;
+    }
+    if (std::find(sections.begin(), sections.end(), key) == sections.end()) {
+      throw InvalidArgument("unknown config section '" + key + "' (expected " + expected + ")");
+    }
+    if (node.empty()) continue;
+    if (!node.isMap()) throw InvalidArgument("config section '" + key + "' must be a map");
+    std::vector<std::pair<std::string, ParameterValue>> values;
+    for (const auto& item : node) values.emplace_back(item.name(), node_value(item.name(), item));
+    config.sections.emplace_back(key, std::move(values));
+  }
+  return config;
+}
+
+void apply_config_section(
+    const ConfigFile& config, const std::string& section,
+    const std::function<bool(const std::string&, const ParameterValue&)>& set) {
+  for (const auto& [name, values] : config.sections) {
+    if (name != section) continue;
+    for (const auto& [parameter, value] : values) {
+      if (!set(parameter, value)) {
+        throw InvalidArgument("unknown parameter '" + parameter + "' in config section '" +
+                              section + "'");
+      }
+    }
+  }
+}
 
 std::vector<std::pair<std::string, ParameterValue>> parameter_values(
     const MultiBernoulliParams& params) {
@@ -173,6 +273,23 @@ bool set_parameter(MultiBernoulliParams& params, const std::string& name,
 bool set_parameter(KdeBackgroundParams& params, const std::string& name,
                    const ParameterValue& value) {
   return set_in(params, kde_fields(), name, value);
+}
+
+std::vector<std::pair<std::string, ParameterValue>> parameter_values(
+    const BoxTrackerParams& params) {
+  return values_of(params, box_fields());
+}
+
+std::vector<std::pair<std::string, ParameterValue>> parameter_values(const HogParams& params) {
+  return values_of(params, hog_fields());
+}
+
+bool set_parameter(BoxTrackerParams& params, const std::string& name, const ParameterValue& value) {
+  return set_in(params, box_fields(), name, value);
+}
+
+bool set_parameter(HogParams& params, const std::string& name, const ParameterValue& value) {
+  return set_in(params, hog_fields(), name, value);
 }
 
 }  // namespace vtrack::apps

@@ -52,6 +52,10 @@ std::vector<TrackRow> track_video_mb(const std::string& input, const MbPipelineP
 // to `path` when complete.
 void write_mot(const std::string& path, const std::vector<TrackRow>& rows);
 
+// Draws a box and its label onto `frame` in a colour derived from the label.
+void draw_labelled_box(cv::Mat& frame, std::uint64_t label, double x, double y, double w,
+                       double h);
+
 // Draws each track's box and label onto `frame` in a colour derived from the label.
 void draw_tracks(cv::Mat& frame, const std::vector<filters::Track>& tracks);
 

@@ -1,0 +1,134 @@
+#pragma once
+// Labelled tracks from any detector's image boxes: the delta-GLMB filter (filters/glmb.hpp,
+// rgbd-glmb-switching-observation.txt eqs. 5-8) with a 2-D box model.
+//
+// State x = [cx, vcx, cy, vcy, w, h] (pixels, one frame per step): the box centre moves with
+// constant velocity, eq. (7) in 2-D with T = 1 frame (F = I2 ⊗ [[1,1],[0,1]],
+// Q = sigma_accel^2 I2 ⊗ g g^T, g = [1/2, 1]^T); the size follows a random walk with standard
+// deviation sigma_size per frame. A detection (x, y, w, h) is observed as z = (cx, cy, w, h) =
+// H x + w, w ~ N(0, diag(sd_c^2, sd_c^2, sd_s^2, sd_s^2)), the Gaussian detection likelihood of
+// eq. (2) on the image plane. False detections are Poisson with mean `clutter_rate` per frame,
+// uniform over centres in the image and sizes up to the image size, so kappa(z) =
+// clutter_rate / (W H)^2. Tracks are born from the detections no track explains (adaptive
+// birth, GlmbParams::adaptive_birth), because people enter anywhere in an image.
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "vtrack/apps/detection_file.hpp"
+#include "vtrack/apps/hog_detector.hpp"
+#include "vtrack/apps/track_video.hpp"
+#include "vtrack/filters/glmb.hpp"
+
+namespace vtrack::apps {
+
+// Defaults: the model's physical scales, then p_D, sigma_accel and the centre noise tuned on frames
+// 1-397 of PETS09-S2L1's Faster R-CNN detections (benchmarks/detections.py --sweep; frames 398-795
+// held out), checked on the synthetic walkers of tests/test_detections.py.
+struct BoxTrackerParams {
+  // p_D (eq. 8's psi). 0.8 (tuned; 0.7-0.9 tried): the detectors miss a person now and then,
+  // more often in groups.
+  double detection_probability = 0.8;
+  // p_S per frame (eq. 6). 0.99: after two missed frames the hypotheses that end the track weigh
+  // about as much as those that keep it (0.999 keeps ghost tracks alive: MOTA 0.49 -> -0.38 on
+  // the tuning frames).
+  double survival_probability = 0.99;
+  // Expected false detections per frame (Poisson), spread uniformly over the image (1-4 tried).
+  double clutter_rate = 1.0;
+  // White-noise acceleration of the centre, px/frame^2 (eq. 7's sigma_v with T = 1 frame). 2
+  // (tuned; 0.5-2 tried): walkers turn and stop, and box centres jump when a person is partly
+  // occluded.
+  double sigma_accel = 2.0;
+  // Random-walk standard deviation of width and height, px/frame.
+  double sigma_size = 1.0;
+  // Detection noise (eq. 2's R): centre and size standard deviations, px. Box edges of detectors
+  // wobble by several pixels (centre 8 tuned from 5-8; size 10 from 10-15).
+  double detection_sd_centre = 8.0;
+  double detection_sd_size = 10.0;
+  // Adaptive birth covariance (standard deviations) around a detection's box with zero velocity:
+  // about one box-width of uncertainty in the walking speed per frame and a few pixels in place.
+  double birth_sd_centre = 10.0;
+  double birth_sd_velocity = 5.0;
+  double birth_sd_size = 10.0;
+  // lambda_B: expected births per frame, and the cap on one detection's birth existence r_B.
+  double birth_rate = 0.5;
+  double birth_max_existence = 0.3;
+  // Posterior hypotheses requested per frame and kept after each update.
+  int hypothesis_budget = 200;
+  // Squared Mahalanobis gate for the 4-D detection: the chi-square(4) quantile of
+  // P_G = 0.9999999 (38.24).
+  double gate_threshold = 38.24;
+  // Detections with confidence below this are ignored (-inf keeps all).
+  double min_confidence = -std::numeric_limits<double>::infinity();
+};
+
+// InvalidArgument naming the parameter and its value.
+void validate(const BoxTrackerParams& params);
+
+// The motion and observation models of the header comment.
+models::LinearGaussianMotion box_motion(const BoxTrackerParams& params);
+models::LinearGaussianObservation box_observation(const BoxTrackerParams& params);
+// The GLMB configuration (p_S, p_D, kappa, budget, gate, adaptive birth) for a width x height
+// image.
+filters::GlmbParams box_glmb_params(const BoxTrackerParams& params, double width, double height);
+
+struct BoxTrack {
+  std::uint64_t id = 0;  // 1, 2, ... in order of first appearance
+  double x = 0, y = 0, w = 0, h = 0;
+};
+
+// Frame-by-frame tracker: one GLMB filter and the map from its labels to MOT ids.
+class BoxTracker {
+ public:
+  BoxTracker(double width, double height, const BoxTrackerParams& params = {});
+  // One frame's detections (x, y, w, h and confidence used; the frame field is ignored), and the
+  // tracks estimated at that frame. Boxes must pass validate_detection.
+  std::vector<BoxTrack> step(const std::vector<Detection>& detections);
+  const filters::GaussianGlmbFilter& filter() const { return filter_; }
+
+ private:
+  BoxTrackerParams params_;
+  filters::GaussianGlmbFilter filter_;
+  std::map<std::pair<int, int>, std::uint64_t> ids_;
+};
+
+// The smallest image (width, height), from (0, 0), that contains every box: the image size when
+// a detection file comes without one. (1, 1) for no detections.
+std::pair<double, double> detections_extent(const std::vector<Detection>& detections);
+
+// Tracks the detections of frames 1 .. max(last_frame, the last frame with a detection), in a
+// width x height image (so trailing frames without detections still get their estimates); MOTChallenge rows, conf 1, ids 1, 2, ... in order of first appearance.
+std::vector<TrackRow> track_detections(const std::vector<Detection>& detections, double width,
+                                       double height, const BoxTrackerParams& params = {},
+                                       long long last_frame = 0,
+                                       const FrameProgress& progress = {});
+
+// The detection-driven pipeline's parameters: `detector` (HogParams names) and `tracker`
+// (BoxTrackerParams names), the sections of its config file:
+//   detector: {hit_threshold: 0.3, upscale: 1.5}
+//   tracker: {detection_probability: 0.85, clutter_rate: 2}
+struct GlmbPipelineParams {
+  HogParams detector;
+  BoxTrackerParams tracker;
+};
+
+// Reads a YAML or JSON config into `params` (unlisted parameters keep their values) and
+// validates it: IoError for a missing or unparsable file, InvalidArgument naming an unknown
+// section or parameter or a value out of range.
+void load_pipeline_config(const std::string& path, GlmbPipelineParams& params);
+
+struct GlmbVideoResult {
+  std::vector<TrackRow> tracks;
+  std::vector<Detection> detections;  // the HOG detections of every frame
+};
+
+// Video (or image folder) -> HOG people detector -> box GLMB tracker, every frame. `render`
+// writes the annotated video (AtomicVideoWriter). IoError naming the frame for corrupt input.
+GlmbVideoResult track_video_glmb(const std::string& input, const HogParams& detector,
+                                 const BoxTrackerParams& tracker, const std::string& render = {},
+                                 const FrameProgress& progress = {});
+
+}  // namespace vtrack::apps

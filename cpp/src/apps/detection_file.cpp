@@ -1,0 +1,136 @@
+#include "vtrack/apps/detection_file.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "vtrack/apps/video_writer.hpp"
+#include "vtrack/core/errors.hpp"
+
+namespace vtrack::apps {
+namespace {
+
+std::string number_text(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+// Trims spaces and tabs (MOT files written by other tools sometimes pad the fields).
+std::string trimmed(const std::string& s) {
+  const auto first = s.find_first_not_of(" \t\r");
+  if (first == std::string::npos) return {};
+  const auto last = s.find_last_not_of(" \t\r");
+  return s.substr(first, last - first + 1);
+}
+
+// The whole field must be a number (strtod accepts "nan" and "inf"; those are caught later with
+// the field's name).
+double parse_field(const std::string& field, const char* name, const std::string& where) {
+  const std::string text = trimmed(field);
+  char* end = nullptr;
+  errno = 0;
+  const double v = text.empty() ? 0.0 : std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size()) {
+    throw InvalidArgument(where + name + " is not a number: '" + text + "'");
+  }
+  return v;
+}
+
+}  // namespace
+
+void validate_detection(const Detection& d, const std::string& where) {
+  if (d.frame < 1) {
+    throw InvalidArgument(where + "frame must be >= 1 (MOTChallenge frames are 1-based), got " +
+                          std::to_string(d.frame));
+  }
+  const std::pair<const char*, double> fields[] = {
+      {"x", d.x}, {"y", d.y}, {"w", d.w}, {"h", d.h}, {"conf", d.confidence}};
+  for (const auto& [name, v] : fields) {
+    if (!std::isfinite(v)) throw InvalidArgument(where + name + " must be finite, got " + number_text(v));
+  }
+  if (!(d.w > 0)) throw InvalidArgument(where + "w must be > 0, got " + number_text(d.w));
+  if (!(d.h > 0)) throw InvalidArgument(where + "h must be > 0, got " + number_text(d.h));
+}
+
+std::vector<Detection> read_detections(const std::string& path, double min_confidence) {
+  if (!std::filesystem::is_regular_file(path)) {
+    throw IoError("no such detection file: '" + path + "'");
+  }
+  std::ifstream in(path);
+  if (!in) throw IoError("cannot read detection file '" + path + "'");
+  static const char* const names[] = {"frame", "id", "x", "y", "w", "h", "conf", "x3d", "y3d", "z3d"};
+  std::vector<Detection> out;
+  std::string line;
+  long long number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    if (trimmed(line).empty()) continue;
+    const std::string where = path + ":" + std::to_string(number) + ": ";
+    std::vector<std::string> fields;
+    std::size_t start = 0;
+    while (true) {
+      const std::size_t comma = line.find(',', start);
+      fields.push_back(line.substr(start, comma - start));
+      if (comma == std::string::npos) break;
+      start = comma + 1;
+    }
+    if (fields.size() < 6 || fields.size() > 10) {
+      throw InvalidArgument(where + "expected 6 to 10 comma-separated fields "
+                            "(frame,id,x,y,w,h[,conf,...]), got " + std::to_string(fields.size()));
+    }
+    double v[10];
+    for (std::size_t i = 0; i < fields.size(); ++i) v[i] = parse_field(fields[i], names[i], where);
+    if (!(std::isfinite(v[0]) && v[0] == std::floor(v[0]) && std::fabs(v[0]) < 1e15)) {
+      throw InvalidArgument(where + "frame must be an integer, got '" + trimmed(fields[0]) + "'");
+    }
+    Detection d{static_cast<long long>(v[0]), v[2], v[3], v[4], v[5],
+                fields.size() > 6 ? v[6] : 1.0};
+    validate_detection(d, where);
+    if (d.confidence >= min_confidence) out.push_back(d);
+  }
+  if (in.bad()) throw IoError("error reading detection file '" + path + "'");
+  return out;
+}
+
+void write_text_atomically(const std::string& path,
+                           const std::function<void(std::ostream&)>& write_lines) {
+  const std::filesystem::path target(path);
+  const std::filesystem::path partial = target.string() + ".partial";
+  {
+    std::ofstream out(partial);
+    if (!out) throw IoError("cannot write '" + partial.string() + "'");
+    try {
+      write_lines(out);
+    } catch (...) {
+      out.close();
+      std::error_code ec;
+      std::filesystem::remove(partial, ec);
+      throw;
+    }
+    out.close();
+    if (!out) {
+      std::error_code ec;
+      std::filesystem::remove(partial, ec);
+      throw IoError("cannot write '" + partial.string() + "'");
+    }
+  }
+  rename_or_throw(partial, target);
+}
+
+void write_detections(const std::string& path, const std::vector<Detection>& detections) {
+  write_text_atomically(path, [&](std::ostream& out) {
+    char line[200];
+    for (const auto& d : detections) {
+      std::snprintf(line, sizeof line, "%lld,-1,%.3f,%.3f,%.3f,%.3f,%.6g,-1,-1,-1\n", d.frame, d.x,
+                    d.y, d.w, d.h, d.confidence);
+      out << line;
+    }
+  });
+}
+
+}  // namespace vtrack::apps
