@@ -27,6 +27,12 @@ void require_probability(const char* name, double v) {
   require(v >= 0.0 && v <= 1.0, name, v, "in [0, 1]");
 }
 
+// Components and tracks in label order (older first), which merging and explaining-away rely on.
+template <typename T>
+void sort_by_label(std::vector<T>& v) {
+  std::sort(v.begin(), v.end(), [](const T& a, const T& b) { return a.label < b.label; });
+}
+
 }  // namespace
 
 void validate(const MultiBernoulliParams& p) {
@@ -211,10 +217,8 @@ void MultiBernoulliFilter::manage_tracks() {
   if (relabelled) {
     // A component that took an old label back is older than its birth suggests: keep
     // components_ (and the tracks) in label order, which merging and explaining-away rely on.
-    std::sort(components_.begin(), components_.end(),
-              [](const BernoulliComponent& a, const BernoulliComponent& b) { return a.label < b.label; });
-    std::sort(tracks_.begin(), tracks_.end(),
-              [](const Track& a, const Track& b) { return a.label < b.label; });
+    sort_by_label(components_);
+    sort_by_label(tracks_);
   }
 }
 
@@ -406,10 +410,7 @@ void merge_overlapping(std::vector<BernoulliComponent>& components, double min_o
     if (!merged[i]) components[k++] = std::move(components[i]);
   }
   components.resize(k);
-  if (relabelled) {
-    std::sort(components.begin(), components.end(),
-              [](const BernoulliComponent& a, const BernoulliComponent& b) { return a.label < b.label; });
-  }
+  if (relabelled) sort_by_label(components);
 }
 
 void MultiBernoulliFilter::prune_and_merge() {
