@@ -103,7 +103,16 @@ simpler to state). Not adopted either: relabelling post hoc (a new track taking 
 within 10-60 frames whose constant-velocity prediction overlaps it) on the former defaults'
 output changed B by +0.001 MOTA and +0.01 IDF1: with tracks sliding between people, identities
 were lost by swaps, not by gaps; the lost-track memory only paid off once the drift stopped the
-swaps.
+swaps. Also tried on the defaults (seed 0 unless stated), not adopted:
+  - a fourth, smaller data-driven birth scale (0.55 of the mean size, for the small people by the
+    fence that are never found): A 0.225 / 0.430, B -0.175 / 0.284 (seed 1: 0.235 / 0.466) --
+    births on half a silhouette;
+  - relabel_overlap 0.1: A unchanged (0.583 / 0.611; no relabelling happens there), B 0.499 /
+    0.441 vs 0.448 / 0.406 with 0.3; not adopted because only the test half can tell;
+  - survival_probability 0.995: A 0.586 / 0.629, B 0.470 / 0.398 (within the seed spread);
+  - not merging two confirmed tracks: identical tracks (explaining-away keeps them apart already);
+  - the KDE's illumination_compensation (see kde_background.hpp), seeds 0-2: A 0.558 / 0.558
+    (vs 0.579 / 0.601), B 0.522 / 0.436 (vs 0.477 / 0.415); off by default.
 
 Result (this script, seeds 0 / 1 / 2; baseline 0.418 / 0.395 calibrated, 0.400 / 0.390 raw on
 398-795): vtrack 398-795 calibrated 0.448 / 0.406, 0.462 / 0.418, 0.520 / 0.420; raw 0.445 /

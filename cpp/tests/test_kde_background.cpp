@@ -128,6 +128,26 @@ TEST(KdeBackground, SelectiveUpdateSkipsForegroundPixelsAtMostMaxSkipsTimes) {
   }
 }
 
+// Illumination compensation: a frame that is the sample under 1.3 x the light has the same r, g
+// and 1.3 x the intensity. Eq. (10) sees foreground (the intensity kernel alone, computed here
+// independently); compensated, the intensity is scaled back and y = 1.
+TEST(KdeBackground, IlluminationCompensationCancelsAGlobalGain) {
+  const cv::Mat dim(10, 12, CV_8UC3, cv::Scalar(60, 90, 120));
+  const cv::Mat bright(10, 12, CV_8UC3, cv::Scalar(78, 117, 156));  // x 1.3 exactly
+  for (const bool compensate : {false, true}) {
+    KdeBackgroundParams p = no_closing(2, 100);
+    p.illumination_compensation = compensate;
+    KdeBackground model(p);
+    cv::Mat y;
+    model.apply(dim, y);
+    model.apply(bright, y);
+    const double expected = compensate ? 1.0 : kernel_product(bright.at<cv::Vec3b>(0, 0),
+                                                              dim.at<cv::Vec3b>(0, 0), p);
+    EXPECT_NEAR(y.at<float>(4, 5), expected, 1e-5) << compensate;
+  }
+  EXPECT_LT(kernel_product(cv::Vec3b(78, 117, 156), cv::Vec3b(60, 90, 120), no_closing(2, 100)), 0.3);
+}
+
 TEST(KdeBackground, FirstFrameIsItsOwnBackground) {
   KdeBackground model(no_closing(5, 3));
   cv::Mat frame(20, 30, CV_8UC3), y;

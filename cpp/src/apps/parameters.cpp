@@ -75,6 +75,7 @@ const std::vector<std::pair<std::string, Field<KdeBackgroundParams>>>& kde_field
       {"sigma_g", F{&P::sigma_g}},     {"sigma_I", F{&P::sigma_I}}, {"closing", F{&P::closing}},
       {"threads", F{&P::threads}},    {"update_threshold", F{&P::update_threshold}},
       {"update_max_skips", F{&P::update_max_skips}},
+      {"illumination_compensation", F{&P::illumination_compensation}},
   };
   return table;
 }

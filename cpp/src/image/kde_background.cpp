@@ -102,6 +102,7 @@ void KdeBackground::reset() {
   samples_.clear();
   samples_.shrink_to_fit();
   sample_frame_.clear();
+  sample_mean_s_.clear();
   count_ = 0;
   next_slot_ = 0;
   skips_.release();
@@ -125,6 +126,7 @@ void KdeBackground::store_sample(const cv::Mat& bgr, const cv::Mat& keep) {
   if (samples_.empty()) {
     samples_.resize(area * 3 * static_cast<std::size_t>(params_.n_samples));
     sample_frame_.assign(static_cast<std::size_t>(params_.n_samples), -1);
+    sample_mean_s_.assign(static_cast<std::size_t>(params_.n_samples), 0.0);
   }
   const int slot = next_slot_;
   std::vector<cv::Mat> planes;
@@ -141,6 +143,10 @@ void KdeBackground::store_sample(const cv::Mat& bgr, const cv::Mat& keep) {
     }
   }
   sample_frame_[slot] = frame_index_;
+  if (params_.illumination_compensation) {
+    const cv::Scalar m = cv::mean(planes[0]) + cv::mean(planes[1]) + cv::mean(planes[2]);
+    sample_mean_s_[slot] = m[0];
+  }
   next_slot_ = (slot + 1) % params_.n_samples;
   count_ = std::min(count_ + 1, params_.n_samples);
 }
@@ -208,6 +214,18 @@ void KdeBackground::evaluate(const cv::Mat& bgr, cv::Mat& y) const {
   const float inv_n = 1.0f / static_cast<float>(count_);
   const int n = params_.n_samples;
   const int oldest = count_ < n ? 0 : next_slot_;
+  // Illumination compensation: the frame's S is scaled by mean S(sample) / mean S(frame) when
+  // compared with each sample (1 without compensation, which keeps eq. 10 as printed).
+  std::vector<float> gain(static_cast<std::size_t>(n), 1.0f);
+  if (params_.illumination_compensation) {
+    const cv::Scalar m = cv::mean(bgr);
+    const double mean_s = m[0] + m[1] + m[2];
+    for (int slot = 0; slot < n; ++slot) {
+      if (mean_s > 0.0 && sample_mean_s_[slot] > 0.0) {
+        gain[slot] = static_cast<float>(sample_mean_s_[slot] / mean_s);
+      }
+    }
+  }
   detail::for_rows(size_.height, params_.threads, [&](int begin, int end) {
     std::vector<float> buffer(static_cast<std::size_t>(cols) * 3);
     float* cur_r = buffer.data();
@@ -226,10 +244,11 @@ void KdeBackground::evaluate(const cv::Mat& bgr, cv::Mat& y) const {
         const unsigned char* sb = samples_.data() + plane_offset(slot, 0) + offset;
         const unsigned char* sg = samples_.data() + plane_offset(slot, 1) + offset;
         const unsigned char* sr = samples_.data() + plane_offset(slot, 2) + offset;
+        const float gs = gain[static_cast<std::size_t>(slot)];
         for (int x = 0; x < cols; ++x) {
           float r, g, s;
           chromaticity(sb[x], sg[x], sr[x], r, g, s);
-          const float dr = cur_r[x] - r, dg = cur_g[x] - g, ds = cur_s[x] - s;
+          const float dr = cur_r[x] - r, dg = cur_g[x] - g, ds = cur_s[x] * gs - s;
           acc[x] += exp_neg(dr * dr * k.r + dg * dg * k.g + ds * ds * k.s);
         }
       }
