@@ -32,10 +32,16 @@ frames: frames 0, K0, ..., and from N0*K0 on the oldest is replaced every K0 fra
 full, y averages over the samples taken so far (frame 0 gives y = 1). `bandwidth` is
 (sigma_r, sigma_g, sigma_I), with I = (R+G+B)/765. `closing` is the side of the square used to
 morphologically close y (0 = off). `threads`: 0 = OpenCV's default, 1 = single thread; the
-result does not depend on it. Not safe to share one model between threads.
+result does not depend on it. `update_threshold` > 0 turns on the selective update (beyond the
+paper): pixels of a sample frame with y below it repeat the newest sample instead, so people
+leave no ghosts (0 = the paper's stack); a pixel is skipped on at most `update_max_skips`
+consecutive sample frames. `illumination_compensation` scales the frame's intensity by the ratio
+of mean intensities before comparing it with each sample (a global light change cancels; off =
+eq. 10 as printed). Not safe to share one model between threads.
 )doc")
       .def(py::init([](int n_samples, int period, const py::handle& bandwidth, int closing,
-                       int threads) {
+                       int threads, double update_threshold, int update_max_skips,
+                       bool illumination_compensation) {
              const auto sigmas = as_vector(bandwidth, "bandwidth");
              if (sigmas.size() != 3) {
                throw py::value_error("bandwidth must hold 3 values (sigma_r, sigma_g, sigma_I), got " +
@@ -49,12 +55,18 @@ result does not depend on it. Not safe to share one model between threads.
              p.sigma_I = sigmas.at(2);
              p.closing = closing;
              p.threads = threads;
+             p.update_threshold = update_threshold;
+             p.update_max_skips = update_max_skips;
+             p.illumination_compensation = illumination_compensation;
              return KdeBackground(p);
            }),
            py::kw_only(), py::arg("n_samples") = defaults.n_samples,
            py::arg("period") = defaults.period,
            py::arg("bandwidth") = py::make_tuple(defaults.sigma_r, defaults.sigma_g, defaults.sigma_I),
-           py::arg("closing") = defaults.closing, py::arg("threads") = defaults.threads)
+           py::arg("closing") = defaults.closing, py::arg("threads") = defaults.threads,
+           py::arg("update_threshold") = defaults.update_threshold,
+           py::arg("update_max_skips") = defaults.update_max_skips,
+           py::arg("illumination_compensation") = defaults.illumination_compensation)
       .def(
           "apply",
           [](KdeBackground& model, const py::handle& frame) {
@@ -87,6 +99,13 @@ result does not depend on it. Not safe to share one model between threads.
                              })
       .def_property_readonly("closing", [](const KdeBackground& b) { return b.params().closing; })
       .def_property_readonly("threads", [](const KdeBackground& b) { return b.params().threads; })
+      .def_property_readonly("update_threshold",
+                             [](const KdeBackground& b) { return b.params().update_threshold; })
+      .def_property_readonly("update_max_skips",
+                             [](const KdeBackground& b) { return b.params().update_max_skips; })
+      .def_property_readonly("illumination_compensation", [](const KdeBackground& b) {
+        return b.params().illumination_compensation;
+      })
       .def("__repr__", [](const KdeBackground& b) {
         const auto& p = b.params();
         return "KdeBackground(n_samples=" + std::to_string(p.n_samples) +
@@ -95,6 +114,9 @@ result does not depend on it. Not safe to share one model between threads.
                py::repr(py::float_(p.sigma_g)).cast<std::string>() + ", " +
                py::repr(py::float_(p.sigma_I)).cast<std::string>() +
                "), closing=" + std::to_string(p.closing) + ", threads=" + std::to_string(p.threads) +
+               ", update_threshold=" + py::repr(py::float_(p.update_threshold)).cast<std::string>() +
+               ", update_max_skips=" + std::to_string(p.update_max_skips) +
+               ", illumination_compensation=" + (p.illumination_compensation ? "True" : "False") +
                ")";
       });
 

@@ -42,7 +42,8 @@ def test_reference_rgi_matches_bgr_to_rgi():
 
 @pytest.mark.parametrize("n_samples,period", [(4, 3), (10, 2)])
 def test_matches_numpy_transcription_on_video_frame_by_frame(video_frames, n_samples, period):
-    model = vtrack.KdeBackground(n_samples=n_samples, period=period, closing=0)
+    # update_threshold=0: the paper's stack (every K0-th frame whole), which the reference follows.
+    model = vtrack.KdeBackground(n_samples=n_samples, period=period, closing=0, update_threshold=0)
     ref = KdeBackgroundReference(n_samples, period, model.bandwidth)
     frames = video_frames if n_samples == 4 else video_frames[:24]
     for k, frame in enumerate(frames):
@@ -61,7 +62,8 @@ def test_matches_numpy_transcription_on_random_images(bandwidth):
     rng = np.random.default_rng(42)
     base = rng.integers(0, 256, (31, 45, 3), dtype=np.uint8)
     base[:4, :4] = 0  # black pixels
-    model = vtrack.KdeBackground(n_samples=3, period=2, bandwidth=bandwidth, closing=0)
+    model = vtrack.KdeBackground(n_samples=3, period=2, bandwidth=bandwidth, closing=0,
+                                 update_threshold=0)
     ref = KdeBackgroundReference(3, 2, bandwidth)
     for k in range(9):
         noise = rng.integers(-15, 16, base.shape)
@@ -94,8 +96,9 @@ def test_read_only_frames_are_accepted():
 # ---- closing, freeze/resume/reset, mask --------------------------------------------------------
 
 def test_closing_is_morphological_closing_of_y(video_frames):
-    plain = vtrack.KdeBackground(period=2, closing=0)
-    closed = vtrack.KdeBackground(period=2, closing=5)
+    # The paper's stack, so both hold the same samples (the selective update reads the closed y).
+    plain = vtrack.KdeBackground(period=2, closing=0, update_threshold=0)
+    closed = vtrack.KdeBackground(period=2, closing=5, update_threshold=0)
     for frame in video_frames[:12]:
         y_plain, y_closed = plain.apply(frame), closed.apply(frame)
     expected = cv2.morphologyEx(y_plain, cv2.MORPH_CLOSE, np.ones((5, 5), np.uint8))
@@ -167,6 +170,8 @@ def test_bad_frames():
     (dict(bandwidth="wide"), TypeError, "bandwidth"),
     (dict(closing=2), ValueError, "closing"),
     (dict(threads=-2), ValueError, "threads"),
+    (dict(update_threshold=1.5), ValueError, "update_threshold"),
+    (dict(update_max_skips=0), ValueError, "update_max_skips"),
 ])
 def test_bad_parameters(kwargs, error, match):
     with pytest.raises(error, match=match):

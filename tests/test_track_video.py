@@ -14,8 +14,11 @@ from vtrack.synthetic import make_scene
 
 # The people of these 320 x 240 scenes are 14-24 px wide and 36-60 px tall; the tracker's size
 # prior defaults are for PETS09 at 768 x 576, so the scenes state their own.
+# Their ground-truth boxes are the blobs' exact extents, the foreground box the filter estimates,
+# so it is reported unscaled (the default box_scale_* / box_offset_* map to PETS09's annotations).
 SIZE_PRIOR = dict(width_mean=19.0, width_std=4.0, width_min=10.0, width_max=30.0,
-                  height_mean=48.0, height_std=8.0, height_min=30.0, height_max=70.0)
+                  height_mean=48.0, height_std=8.0, height_min=30.0, height_max=70.0,
+                  box_scale_w=1.0, box_scale_h=1.0, box_offset_x=0.0, box_offset_y=0.0)
 
 
 @pytest.fixture(scope="module")
@@ -42,7 +45,8 @@ def test_tracks_synthetic_people_end_to_end(scenes, seed):
     rows = vtrack.track_video(path, seed=0, **SIZE_PRIOR)
     assert rows.shape[1] == 10 and rows[:, 0].min() >= 1
     metrics = evaluate(scene.gt_rows(), rows)
-    # Measured 0.94-0.95 / 0.96-0.98: what is lost is the 2-4 frames a person needs to become
+    # Measured MOTA 0.91 (scene 3; 0.94 with the KDE's paper stack, update_threshold 0) and 0.94
+    # (scene 4), IDF1 0.96-0.97: what is lost is the ~5-8 frames a person needs to become
     # confirmed after entering (and to die after leaving). One lost or duplicated person for a
     # third of the scene costs ~0.15 MOTA, so these bounds catch a real regression.
     assert metrics["MOTA"] > 0.85, metrics
@@ -51,6 +55,24 @@ def test_tracks_synthetic_people_end_to_end(scenes, seed):
     # The right number of people at the end, after the entries.
     last = len(scene) - 1
     assert np.sum(rows[:, 0] == last + 1) == scene.count(last)
+
+
+def test_illumination_compensation_handles_a_faster_light_change(tmp_path):
+    """An 8 % light swing over the 150 frames (the KDE's stack spans 100): with the paper's eq. (10)
+    the intensity kernel turns the whole image grey and false tracks appear (measured MOTA 0.79,
+    27 FP on this scene); the KDE's global gain compensation cancels the swing (0.94, 1 FP)."""
+    cv2 = pytest.importorskip("cv2")
+    scene = make_scene(320, 240, n_frames=150, n_people=3, seed=3, illumination_amplitude=0.08)
+    path = tmp_path / "scene.avi"
+    writer = cv2.VideoWriter(str(path), cv2.VideoWriter_fourcc(*"MJPG"), 10.0, (320, 240))
+    for k in range(len(scene)):
+        writer.write(scene.frame(k))
+    writer.release()
+    plain = evaluate(scene.gt_rows(), vtrack.track_video(path, seed=0, **SIZE_PRIOR))
+    compensated = evaluate(scene.gt_rows(), vtrack.track_video(
+        path, seed=0, background={"illumination_compensation": True}, **SIZE_PRIOR))
+    assert compensated["MOTA"] > 0.85 and compensated["IDF1"] > 0.9, compensated
+    assert compensated["FP"] < plain["FP"], (plain, compensated)
 
 
 def test_same_seed_same_tracks_and_parameters_are_checked(scenes):

@@ -26,6 +26,7 @@ KdeBackgroundParams no_closing(int n_samples, int period) {
   p.period = period;
   p.closing = 0;
   p.threads = 1;
+  p.update_threshold = 0.0;  // the paper's stack: every K0-th frame whole (eq. 10's schedule)
   return p;
 }
 
@@ -85,6 +86,66 @@ TEST(KdeBackground, ValuesMatchEquationTenOnTheSchedule) {
     ASSERT_EQ(y.type(), CV_32FC1);
     EXPECT_NEAR(y.at<float>(2, 3), expected_y(frames.back(), stack, 2, 3, p), 1e-6) << "frame " << k;
   }
+}
+
+// Selective update (beyond the paper): a person present on one sample frame leaves no ghost, and
+// one present on every sample frame is absorbed after update_max_skips skips. Background A and
+// person B are far apart in rgI, so each kernel is 0 or 1 (to 1e-30) and y inside the square is
+// the fraction of samples equal to the current pixel.
+TEST(KdeBackground, SelectiveUpdateSkipsForegroundPixelsAtMostMaxSkipsTimes) {
+  const cv::Vec3b a(50, 100, 150), b(200, 30, 60);
+  const cv::Rect square(4, 3, 5, 4);
+  auto frame = [&](bool person) {
+    cv::Mat f(12, 16, CV_8UC3, cv::Scalar(a[0], a[1], a[2]));
+    if (person) f(square).setTo(cv::Scalar(b[0], b[1], b[2]));
+    return f;
+  };
+  auto at = [](const cv::Mat& y) { return double(y.at<float>(5, 6)); };  // inside the square
+  KdeBackgroundParams p = no_closing(4, 2);
+  // Ghost: the person stands in the square on sample frame 2 only.
+  for (const double threshold : {0.0, 0.5}) {
+    p.update_threshold = threshold;
+    KdeBackground model(p);
+    cv::Mat y;
+    model.apply(frame(false), y);  // frame 0: sample
+    model.apply(frame(false), y);
+    model.apply(frame(true), y);   // frame 2: sample
+    if (threshold > 0) EXPECT_NEAR(at(y), 0.0, 1e-6);  // y from the stack before the sample
+    else EXPECT_NEAR(at(y), 0.5, 1e-6);                // eq. (10): the l = 0 term is frame 2
+    model.apply(frame(false), y);  // frame 3: the person has gone
+    EXPECT_NEAR(at(y), threshold > 0 ? 1.0 : 0.5, 1e-6) << threshold;  // ghost only without
+    EXPECT_NEAR(y.at<float>(0, 0), 1.0, 1e-6);
+  }
+  // The person stays from frame 2 on: skipped on sample frames 2 and 4 (max_skips 2), taken on 6.
+  p.update_threshold = 0.5;
+  p.update_max_skips = 2;
+  KdeBackground model(p);
+  cv::Mat y;
+  const double expected[] = {1, 1, 0, 0, 0, 0, 0, 0.25, 0.25, 0.5};  // frames 0..9
+  for (int k = 0; k < 10; ++k) {
+    model.apply(frame(k >= 2), y);
+    EXPECT_NEAR(at(y), expected[k], 1e-6) << "frame " << k;
+  }
+}
+
+// Illumination compensation: a frame that is the sample under 1.3 x the light has the same r, g
+// and 1.3 x the intensity. Eq. (10) sees foreground (the intensity kernel alone, computed here
+// independently); compensated, the intensity is scaled back and y = 1.
+TEST(KdeBackground, IlluminationCompensationCancelsAGlobalGain) {
+  const cv::Mat dim(10, 12, CV_8UC3, cv::Scalar(60, 90, 120));
+  const cv::Mat bright(10, 12, CV_8UC3, cv::Scalar(78, 117, 156));  // x 1.3 exactly
+  for (const bool compensate : {false, true}) {
+    KdeBackgroundParams p = no_closing(2, 100);
+    p.illumination_compensation = compensate;
+    KdeBackground model(p);
+    cv::Mat y;
+    model.apply(dim, y);
+    model.apply(bright, y);
+    const double expected = compensate ? 1.0 : kernel_product(bright.at<cv::Vec3b>(0, 0),
+                                                              dim.at<cv::Vec3b>(0, 0), p);
+    EXPECT_NEAR(y.at<float>(4, 5), expected, 1e-5) << compensate;
+  }
+  EXPECT_LT(kernel_product(cv::Vec3b(78, 117, 156), cv::Vec3b(60, 90, 120), no_closing(2, 100)), 0.3);
 }
 
 TEST(KdeBackground, FirstFrameIsItsOwnBackground) {
@@ -246,6 +307,9 @@ TEST(KdeBackground, RejectsBadParameters) {
   rejects([](KdeBackgroundParams& p) { p.closing = 4; }, "closing");
   rejects([](KdeBackgroundParams& p) { p.closing = -1; }, "closing");
   rejects([](KdeBackgroundParams& p) { p.threads = -1; }, "threads");
+  rejects([](KdeBackgroundParams& p) { p.update_threshold = 1.5; }, "update_threshold");
+  rejects([](KdeBackgroundParams& p) { p.update_threshold = NAN; }, "update_threshold");
+  rejects([](KdeBackgroundParams& p) { p.update_max_skips = 0; }, "update_max_skips");
 }
 
 TEST(CloseSquare, EqualsOpenCvClosing) {

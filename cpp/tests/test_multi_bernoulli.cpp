@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <map>
 #include <set>
 #include <string>
 
@@ -39,6 +40,13 @@ MultiBernoulliParams small_scene_params() {
   p.sigma_x = p.sigma_y = 1.5;
   p.sigma_w = p.sigma_h = 0.5;
   p.adaptive_birth_stride = 4;
+  // The paper's track output (Section 4): no confirmation delay, no lost-track memory, random
+  // walk, reported box = estimated box. The tests of track management below switch them on.
+  p.confirm_frames = 1;
+  p.lost_memory = 0;
+  p.velocity_smoothing = 0.0;
+  p.box_scale_w = p.box_scale_h = 1.0;
+  p.box_offset_x = p.box_offset_y = 0.0;
   return p;
 }
 
@@ -227,6 +235,87 @@ TEST(MultiBernoulli, ParticleCountsFollowExistence) {
   }
 }
 
+// Confirmation and the reported box only change what is reported, not the filter: with the same
+// seed the tracks are those of the paper's output, each label's first confirm_frames - 1 reports
+// dropped and every box scaled about its centre and shifted.
+TEST(MultiBernoulli, ConfirmationAndBoxTransformOnlyChangeTheOutput) {
+  auto run = [](const MultiBernoulliParams& p) {
+    MultiBernoulliFilter f(160, 120, p, 4);
+    std::vector<std::vector<Track>> out;
+    for (int k = 0; k < 20; ++k) out.push_back(f.step(scene({{30 + 2 * k, 40, 12, 30}})));
+    return out;
+  };
+  const MultiBernoulliParams paper = small_scene_params();
+  MultiBernoulliParams p = paper;
+  p.confirm_frames = 4;
+  p.box_scale_w = 1.5;
+  p.box_scale_h = 1.25;
+  p.box_offset_y = 0.1;
+  const auto a = run(paper), b = run(p);
+  std::map<std::uint64_t, int> seen;
+  int reported = 0;
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    std::vector<Track> expected;
+    for (const Track& t : a[k]) {
+      if (++seen[t.label] < 4) continue;
+      const float cx = t.x + 0.5f * t.w, cy = t.y + 0.5f * t.h + 0.1f * t.h;
+      expected.push_back({t.label, cx - 0.75f * t.w, cy - 0.625f * t.h, 1.5f * t.w, 1.25f * t.h,
+                          t.existence});
+    }
+    ASSERT_EQ(b[k].size(), expected.size()) << "frame " << k;
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+      EXPECT_EQ(b[k][i].label, expected[i].label);
+      EXPECT_NEAR(b[k][i].x, expected[i].x, 1e-3);
+      EXPECT_NEAR(b[k][i].y, expected[i].y, 1e-3);
+      EXPECT_NEAR(b[k][i].w, expected[i].w, 1e-3);
+      EXPECT_NEAR(b[k][i].h, expected[i].h, 1e-3);
+      ++reported;
+    }
+  }
+  EXPECT_GT(reported, 10);
+}
+
+// A person walking at 2 px/frame: the drift of velocity_smoothing learns that speed.
+TEST(MultiBernoulli, VelocityEstimateFollowsAWalkingPerson) {
+  MultiBernoulliParams p = small_scene_params();
+  p.velocity_smoothing = 0.3;
+  MultiBernoulliFilter f(160, 120, p, 5);
+  for (int k = 0; k < 30; ++k) f.step(scene({{20 + 2 * k, 40, 12, 30}}));
+  ASSERT_EQ(f.tracks().size(), 1u);
+  for (const auto& c : f.components()) {
+    if (c.label != f.tracks()[0].label) continue;
+    EXPECT_NEAR(c.velocity[0], 2.0, 0.6);
+    EXPECT_NEAR(c.velocity[1], 0.0, 0.6);
+  }
+}
+
+// A person walks, is hidden for 6 frames (the track is pruned), and reappears where they would
+// be at their speed: with the lost-track memory the new component takes the old label back,
+// without it the person gets a new one.
+TEST(MultiBernoulli, LostMemoryGivesAReappearingPersonTheirLabelBack) {
+  auto run = [](int memory) {
+    MultiBernoulliParams p = small_scene_params();
+    p.velocity_smoothing = 0.3;
+    p.lost_memory = memory;
+    MultiBernoulliFilter f(160, 120, p, 6);
+    std::vector<std::uint64_t> before, after;
+    for (int k = 0; k < 40; ++k) {
+      const bool hidden = k >= 20 && k < 26;
+      const auto tracks = f.step(scene(hidden ? std::vector<cv::Rect>{}
+                                              : std::vector<cv::Rect>{{20 + 2 * k, 40, 12, 30}}));
+      if (hidden && k >= 23) EXPECT_TRUE(tracks.empty()) << "frame " << k;
+      for (const auto& t : tracks) (k < 20 ? before : after).push_back(t.label);
+    }
+    EXPECT_FALSE(before.empty());
+    EXPECT_FALSE(after.empty());
+    return std::make_pair(before.back(), after.back());
+  };
+  const auto [kept_before, kept_after] = run(30);
+  EXPECT_EQ(kept_before, kept_after);
+  const auto [lost_before, lost_after] = run(0);
+  EXPECT_NE(lost_before, lost_after);
+}
+
 TEST(MultiBernoulli, RejectsBadParametersNamingThem) {
   auto expect_error = [](auto mutate, const std::string& name) {
     MultiBernoulliParams p;
@@ -245,6 +334,12 @@ TEST(MultiBernoulli, RejectsBadParametersNamingThem) {
   expect_error([](MultiBernoulliParams& p) { p.sigma_h = -1.0; }, "sigma_h");
   expect_error([](MultiBernoulliParams& p) { p.likelihood.delta_f = 0.0; }, "delta_f");
   expect_error([](MultiBernoulliParams& p) { p.width_max = 5.0; }, "width_max");
+  expect_error([](MultiBernoulliParams& p) { p.confirm_frames = 0; }, "confirm_frames");
+  expect_error([](MultiBernoulliParams& p) { p.lost_memory = -1; }, "lost_memory");
+  expect_error([](MultiBernoulliParams& p) { p.relabel_overlap = 0.0; }, "relabel_overlap");
+  expect_error([](MultiBernoulliParams& p) { p.velocity_smoothing = 1.5; }, "velocity_smoothing");
+  expect_error([](MultiBernoulliParams& p) { p.box_scale_w = 0.0; }, "box_scale_w");
+  expect_error([](MultiBernoulliParams& p) { p.box_offset_y = NAN; }, "box_offset_y");
   MultiBernoulliParams ok;
   ok.survival_probability = 1.0;  // P_S = 1 is allowed
   EXPECT_NO_THROW(MultiBernoulliFilter(64, 48, ok));

@@ -62,8 +62,11 @@ class KdeBackground:
         n_samples: int = 10,
         period: int = 10,
         bandwidth: ArrayLike = (0.03, 0.03, 0.06),
-        closing: int = 3,
+        closing: int = 5,
         threads: int = 0,
+        update_threshold: float = 0.5,
+        update_max_skips: int = 3,
+        illumination_compensation: bool = False,
     ) -> None: ...
     def apply(self, frame: npt.NDArray[np.uint8]) -> npt.NDArray[np.float32]: ...
     def freeze(self) -> None: ...
@@ -85,6 +88,12 @@ class KdeBackground:
     def closing(self) -> int: ...
     @property
     def threads(self) -> int: ...
+    @property
+    def update_threshold(self) -> float: ...
+    @property
+    def update_max_skips(self) -> int: ...
+    @property
+    def illumination_compensation(self) -> bool: ...
 
 def foreground_mask(y: npt.NDArray[np.float32], *, threshold: float) -> npt.NDArray[np.uint8]: ...
 def close_square(
@@ -328,6 +337,14 @@ class MultiBernoulliTracker:
         merge_overlap: float = ...,
         estimate_threshold: float = ...,
         max_existence: float = ...,
+        confirm_frames: int = ...,
+        lost_memory: int = ...,
+        relabel_overlap: float = ...,
+        velocity_smoothing: float = ...,
+        box_scale_w: float = ...,
+        box_scale_h: float = ...,
+        box_offset_x: float = ...,
+        box_offset_y: float = ...,
     ) -> None: ...
     def step(self, y: npt.NDArray[np.float32]) -> List[Track]: ...
     @property

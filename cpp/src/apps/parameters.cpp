@@ -59,6 +59,14 @@ const std::vector<std::pair<std::string, Field<MultiBernoulliParams>>>& mb_field
       {"merge_overlap", F{&P::merge_overlap}},
       {"estimate_threshold", F{&P::estimate_threshold}},
       {"max_existence", F{&P::max_existence}},
+      {"confirm_frames", F{&P::confirm_frames}},
+      {"lost_memory", F{&P::lost_memory}},
+      {"relabel_overlap", F{&P::relabel_overlap}},
+      {"velocity_smoothing", F{&P::velocity_smoothing}},
+      {"box_scale_w", F{&P::box_scale_w}},
+      {"box_scale_h", F{&P::box_scale_h}},
+      {"box_offset_x", F{&P::box_offset_x}},
+      {"box_offset_y", F{&P::box_offset_y}},
   };
   return table;
 }
@@ -69,7 +77,9 @@ const std::vector<std::pair<std::string, Field<KdeBackgroundParams>>>& kde_field
   static const std::vector<std::pair<std::string, F>> table = {
       {"n_samples", F{&P::n_samples}}, {"period", F{&P::period}},   {"sigma_r", F{&P::sigma_r}},
       {"sigma_g", F{&P::sigma_g}},     {"sigma_I", F{&P::sigma_I}}, {"closing", F{&P::closing}},
-      {"threads", F{&P::threads}},
+      {"threads", F{&P::threads}},    {"update_threshold", F{&P::update_threshold}},
+      {"update_max_skips", F{&P::update_max_skips}},
+      {"illumination_compensation", F{&P::illumination_compensation}},
   };
   return table;
 }

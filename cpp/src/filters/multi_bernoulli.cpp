@@ -27,6 +27,12 @@ void require_probability(const char* name, double v) {
   require(v >= 0.0 && v <= 1.0, name, v, "in [0, 1]");
 }
 
+// Components and tracks in label order (older first), which merging and explaining-away rely on.
+template <typename T>
+void sort_by_label(std::vector<T>& v) {
+  std::sort(v.begin(), v.end(), [](const T& a, const T& b) { return a.label < b.label; });
+}
+
 }  // namespace
 
 void validate(const MultiBernoulliParams& p) {
@@ -71,6 +77,15 @@ void validate(const MultiBernoulliParams& p) {
           p.estimate_threshold, "in [0, 1)");
   require(p.max_existence > 0.0 && p.max_existence <= 1.0, "max_existence", p.max_existence,
           "in (0, 1]");
+  require(p.confirm_frames >= 1, "confirm_frames", p.confirm_frames, ">= 1");
+  require(p.lost_memory >= 0, "lost_memory", p.lost_memory, ">= 0");
+  require(p.relabel_overlap > 0.0 && p.relabel_overlap <= 1.0, "relabel_overlap",
+          p.relabel_overlap, "in (0, 1]");
+  require_probability("velocity_smoothing", p.velocity_smoothing);
+  require_positive("box_scale_w", p.box_scale_w);
+  require_positive("box_scale_h", p.box_scale_h);
+  require(std::isfinite(p.box_offset_x), "box_offset_x", p.box_offset_x, "finite");
+  require(std::isfinite(p.box_offset_y), "box_offset_y", p.box_offset_y, "finite");
 }
 
 Eigen::Vector4f BernoulliComponent::mean() const {
@@ -84,6 +99,15 @@ double box_overlap(const Eigen::Vector4f& a, const Eigen::Vector4f& b) {
   if (iw <= 0.0 || ih <= 0.0) return 0.0;
   const double smaller = std::min(static_cast<double>(a[2]) * a[3], static_cast<double>(b[2]) * b[3]);
   return smaller > 0.0 ? iw * ih / smaller : 0.0;
+}
+
+double box_iou(const Eigen::Vector4f& a, const Eigen::Vector4f& b) {
+  const double iw = std::min(a[0] + a[2], b[0] + b[2]) - std::max(a[0], b[0]);
+  const double ih = std::min(a[1] + a[3], b[1] + b[3]) - std::max(a[1], b[1]);
+  if (iw <= 0.0 || ih <= 0.0) return 0.0;
+  const double inter = iw * ih;
+  const double uni = static_cast<double>(a[2]) * a[3] + static_cast<double>(b[2]) * b[3] - inter;
+  return uni > 0.0 ? inter / uni : 0.0;
 }
 
 double updated_existence(double r, double log_rho) {
@@ -127,16 +151,75 @@ std::vector<Track> MultiBernoulliFilter::step(const cv::Mat& y) {
   update();
   prune_and_merge();
   resample();
-
-  tracks_.clear();
-  for (const auto& c : components_) {
-    if (c.existence > params_.estimate_threshold) {
-      const Eigen::Vector4f m = c.mean();
-      tracks_.push_back({c.label, m[0], m[1], m[2], m[3], c.existence});
-    }
-  }
+  manage_tracks();
   ++frame_;
   return tracks_;
+}
+
+void MultiBernoulliFilter::remember_lost(const BernoulliComponent& c) {
+  if (params_.lost_memory == 0 || !c.confirmed || c.last_reported < 0) return;
+  lost_.push_back({c.label, c.last_box, c.velocity, c.last_reported});
+}
+
+void MultiBernoulliFilter::manage_tracks() {
+  // Beyond the paper (see MultiBernoulliParams): confirmation, relabelling from the lost memory,
+  // velocity estimates and the reported box transform. Section 4's estimate is the weighted mean
+  // of a component with r > estimate_threshold.
+  const int memory = params_.lost_memory;
+  lost_.erase(std::remove_if(lost_.begin(), lost_.end(),
+                             [&](const LostTrack& l) { return frame_ - l.frame > memory; }),
+              lost_.end());
+  const float alpha = float(params_.velocity_smoothing);
+  bool relabelled = false;
+  tracks_.clear();
+  for (auto& c : components_) {
+    const Eigen::Vector4f m = c.mean();
+    if (c.birth_frame < frame_) {  // not born this step: it has a previous estimate
+      const Eigen::Vector2f shift = (m.head<2>() + 0.5f * m.tail<2>()) -
+                                    (c.last_mean.head<2>() + 0.5f * c.last_mean.tail<2>());
+      c.velocity = (1.0f - alpha) * c.velocity + alpha * shift;
+    }
+    c.last_mean = m;
+    if (c.existence <= params_.estimate_threshold) continue;
+    ++c.hits;
+    if (!c.confirmed && !lost_.empty()) {
+      // The lost track whose box, moved on at its velocity, overlaps this estimate most.
+      double best = params_.relabel_overlap;
+      auto found = lost_.end();
+      for (auto it = lost_.begin(); it != lost_.end(); ++it) {
+        Eigen::Vector4f predicted = it->box;
+        predicted.head<2>() += float(frame_ - it->frame) * it->velocity;
+        const double iou = box_iou(predicted, m);
+        if (iou >= best) {
+          best = iou;
+          found = it;
+        }
+      }
+      if (found != lost_.end()) {
+        c.label = found->label;
+        c.velocity = found->velocity;
+        c.confirmed = true;
+        relabelled = true;
+        lost_.erase(found);
+      }
+    }
+    if (c.hits >= params_.confirm_frames) c.confirmed = true;
+    if (!c.confirmed) continue;
+    c.last_box = m;
+    c.last_reported = frame_;
+    // Reported box: scaled about the centre, centre shifted (box_scale_*, box_offset_*).
+    const float w = m[2] * float(params_.box_scale_w);
+    const float h = m[3] * float(params_.box_scale_h);
+    const float cx = m[0] + 0.5f * m[2] + float(params_.box_offset_x) * m[2];
+    const float cy = m[1] + 0.5f * m[3] + float(params_.box_offset_y) * m[3];
+    tracks_.push_back({c.label, cx - 0.5f * w, cy - 0.5f * h, w, h, c.existence});
+  }
+  if (relabelled) {
+    // A component that took an old label back is older than its birth suggests: keep
+    // components_ (and the tracks) in label order, which merging and explaining-away rely on.
+    sort_by_label(components_);
+    sort_by_label(tracks_);
+  }
 }
 
 void MultiBernoulliFilter::clamp_sizes(BoxStates& s) const {
@@ -155,6 +238,9 @@ void MultiBernoulliFilter::predict() {
     rng_.fill_normal(noise_.data(), noise_.size());
     const Eigen::Map<const BoxStates> e(noise_.data(), 4, c.particles.cols());
     c.particles += (e.array().colwise() * sigma).matrix();
+    // Beyond the paper: the drift v of MultiBernoulliParams::velocity_smoothing (zero when off).
+    c.particles.row(0).array() += c.velocity[0];
+    c.particles.row(1).array() += c.velocity[1];
     clamp_sizes(c.particles);
   }
 }
@@ -272,19 +358,35 @@ void MultiBernoulliFilter::update() {
 }
 
 void merge_overlapping(std::vector<BernoulliComponent>& components, double min_overlap,
-                       double max_existence) {
+                       double max_existence, std::vector<BernoulliComponent>* absorbed) {
   // Components are in label order, so for i < j, i is the older: j is merged into i, and i
   // keeps its label.
   std::vector<Eigen::Vector4f> means;
   means.reserve(components.size());
   for (const auto& c : components) means.push_back(c.mean());
   std::vector<bool> merged(components.size(), false);
+  bool relabelled = false;
   for (std::size_t i = 0; i < components.size(); ++i) {
     if (merged[i]) continue;
     for (std::size_t j = i + 1; j < components.size(); ++j) {
       if (merged[j] || box_overlap(means[i], means[j]) <= min_overlap) continue;
       auto& a = components[i];
-      const auto& b = components[j];
+      auto& b = components[j];
+      // Beyond the paper: a confirmed track is not renamed by an unconfirmed one it absorbs
+      // (MultiBernoulliParams::confirm_frames); when only b is confirmed its label and track state
+      // carry on. Otherwise the older label survives (Section 4 does not say; the issue asks).
+      if (b.confirmed && !a.confirmed) {
+        std::swap(a.label, b.label);
+        std::swap(a.birth_frame, b.birth_frame);
+        std::swap(a.hits, b.hits);
+        std::swap(a.confirmed, b.confirmed);
+        std::swap(a.velocity, b.velocity);
+        std::swap(a.last_mean, b.last_mean);
+        std::swap(a.last_box, b.last_box);
+        std::swap(a.last_reported, b.last_reported);
+        relabelled = true;
+      }
+      if (absorbed) absorbed->push_back(b);
       // The merged Bernoulli exists if either does: r = 1 - (1 - r_a)(1 - r_b); its density is
       // the r-weighted mixture of the two particle sets.
       const Eigen::Index na = a.particles.cols();
@@ -308,16 +410,23 @@ void merge_overlapping(std::vector<BernoulliComponent>& components, double min_o
     if (!merged[i]) components[k++] = std::move(components[i]);
   }
   components.resize(k);
+  if (relabelled) sort_by_label(components);
 }
 
 void MultiBernoulliFilter::prune_and_merge() {
   components_.erase(std::remove_if(components_.begin(), components_.end(),
                                    [&](const BernoulliComponent& c) {
-                                     return c.existence < params_.prune_threshold;
+                                     if (c.existence >= params_.prune_threshold) return false;
+                                     remember_lost(c);
+                                     return true;
                                    }),
                     components_.end());
   // Births are appended with increasing labels, so components_ is in label order.
-  merge_overlapping(components_, params_.merge_overlap, params_.max_existence);
+  std::vector<BernoulliComponent> absorbed;
+  merge_overlapping(components_, params_.merge_overlap, params_.max_existence,
+                    params_.lost_memory > 0 ? &absorbed : nullptr);
+  // A confirmed track absorbed by another (two people in one blob) may reappear when they part.
+  for (const auto& c : absorbed) remember_lost(c);
 }
 
 void MultiBernoulliFilter::resample() {

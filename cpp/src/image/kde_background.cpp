@@ -81,6 +81,14 @@ void validate(const KdeBackgroundParams& p) {
                           std::to_string(p.closing));
   }
   if (p.threads < 0) throw InvalidArgument("threads must be >= 0, got " + std::to_string(p.threads));
+  if (!(p.update_threshold >= 0.0 && p.update_threshold <= 1.0)) {
+    throw InvalidArgument("update_threshold must be in [0, 1], got " +
+                          std::to_string(p.update_threshold));
+  }
+  if (p.update_max_skips < 1 || p.update_max_skips > 255) {
+    throw InvalidArgument("update_max_skips must be in [1, 255], got " +
+                          std::to_string(p.update_max_skips));
+  }
 }
 
 KdeBackground::KdeBackground(const KdeBackgroundParams& params) : params_(params) {
@@ -94,8 +102,10 @@ void KdeBackground::reset() {
   samples_.clear();
   samples_.shrink_to_fit();
   sample_frame_.clear();
+  sample_mean_s_.clear();
   count_ = 0;
   next_slot_ = 0;
+  skips_.release();
 }
 
 std::vector<long long> KdeBackground::sample_frames() const {
@@ -111,11 +121,12 @@ std::size_t KdeBackground::plane_offset(int slot, int channel) const {
          static_cast<std::size_t>(size_.area());
 }
 
-void KdeBackground::store_sample(const cv::Mat& bgr) {
+void KdeBackground::store_sample(const cv::Mat& bgr, const cv::Mat& keep) {
   const std::size_t area = static_cast<std::size_t>(size_.area());
   if (samples_.empty()) {
     samples_.resize(area * 3 * static_cast<std::size_t>(params_.n_samples));
     sample_frame_.assign(static_cast<std::size_t>(params_.n_samples), -1);
+    sample_mean_s_.assign(static_cast<std::size_t>(params_.n_samples), 0.0);
   }
   const int slot = next_slot_;
   std::vector<cv::Mat> planes;
@@ -123,7 +134,19 @@ void KdeBackground::store_sample(const cv::Mat& bgr) {
     planes.emplace_back(size_, CV_8UC1, samples_.data() + plane_offset(slot, c));
   }
   cv::split(bgr, planes);  // writes into the slot's memory: the headers match in size and type
+  if (!keep.empty() && count_ > 0) {
+    // Selective update: foreground pixels repeat the newest sample (the slot before this one).
+    const int newest = (slot + params_.n_samples - 1) % params_.n_samples;
+    for (int c = 0; c < 3; ++c) {
+      const cv::Mat previous(size_, CV_8UC1, samples_.data() + plane_offset(newest, c));
+      previous.copyTo(planes[c], keep);
+    }
+  }
   sample_frame_[slot] = frame_index_;
+  if (params_.illumination_compensation) {
+    const cv::Scalar m = cv::mean(planes[0]) + cv::mean(planes[1]) + cv::mean(planes[2]);
+    sample_mean_s_[slot] = m[0];
+  }
   next_slot_ = (slot + 1) % params_.n_samples;
   count_ = std::min(count_ + 1, params_.n_samples);
 }
@@ -144,12 +167,35 @@ void KdeBackground::apply(const cv::Mat& bgr, cv::Mat& y) {
   }
   // The sample schedule of section 3.1: frames 0, K0, 2 K0, ...; the ring buffer replaces the
   // oldest sample once N0 are stored.
-  if (learning_ && frame_index_ % params_.period == 0) store_sample(bgr);
+  const bool sample = learning_ && frame_index_ % params_.period == 0;
+  // Selective update: the sample is chosen by this frame's y, so it is stored after y (see
+  // KdeBackgroundParams::update_threshold); the first sample is always the whole frame.
+  const bool selective = sample && params_.update_threshold > 0.0 && count_ > 0;
+  if (sample && !selective) store_sample(bgr);
   const bool closing = params_.closing > 1;
   cv::Mat& raw = closing ? closing_buffer_ : y;
   raw.create(size_, CV_32FC1);
   evaluate(bgr, raw);
   if (closing) close_square(raw, y, params_.closing, params_.threads, &closing_workspace_);
+  if (selective) {
+    // keep = foreground and skipped fewer than update_max_skips times in a row; skips counts the
+    // consecutive foreground sample frames (reset where the pixel is background).
+    if (skips_.size() != size_) skips_ = cv::Mat::zeros(size_, CV_8UC1);
+    const float threshold = static_cast<float>(params_.update_threshold);
+    const auto max_skips = static_cast<unsigned char>(params_.update_max_skips);
+    keep_.create(size_, CV_8UC1);
+    for (int r = 0; r < size_.height; ++r) {
+      const float* yr = y.ptr<float>(r);
+      unsigned char* sr = skips_.ptr<unsigned char>(r);
+      unsigned char* kr = keep_.ptr<unsigned char>(r);
+      for (int c = 0; c < size_.width; ++c) {
+        const bool foreground = yr[c] < threshold;
+        kr[c] = (foreground && sr[c] < max_skips) ? 255 : 0;
+        sr[c] = foreground ? static_cast<unsigned char>(std::min(sr[c] + 1, 255)) : 0;
+      }
+    }
+    store_sample(bgr, keep_);
+  }
   ++frame_index_;
 }
 
@@ -168,6 +214,18 @@ void KdeBackground::evaluate(const cv::Mat& bgr, cv::Mat& y) const {
   const float inv_n = 1.0f / static_cast<float>(count_);
   const int n = params_.n_samples;
   const int oldest = count_ < n ? 0 : next_slot_;
+  // Illumination compensation: the frame's S is scaled by mean S(sample) / mean S(frame) when
+  // compared with each sample (1 without compensation, which keeps eq. 10 as printed).
+  std::vector<float> gain(static_cast<std::size_t>(n), 1.0f);
+  if (params_.illumination_compensation) {
+    const cv::Scalar m = cv::mean(bgr);
+    const double mean_s = m[0] + m[1] + m[2];
+    for (int slot = 0; slot < n; ++slot) {
+      if (mean_s > 0.0 && sample_mean_s_[slot] > 0.0) {
+        gain[slot] = static_cast<float>(sample_mean_s_[slot] / mean_s);
+      }
+    }
+  }
   detail::for_rows(size_.height, params_.threads, [&](int begin, int end) {
     std::vector<float> buffer(static_cast<std::size_t>(cols) * 3);
     float* cur_r = buffer.data();
@@ -186,10 +244,11 @@ void KdeBackground::evaluate(const cv::Mat& bgr, cv::Mat& y) const {
         const unsigned char* sb = samples_.data() + plane_offset(slot, 0) + offset;
         const unsigned char* sg = samples_.data() + plane_offset(slot, 1) + offset;
         const unsigned char* sr = samples_.data() + plane_offset(slot, 2) + offset;
+        const float gs = gain[static_cast<std::size_t>(slot)];
         for (int x = 0; x < cols; ++x) {
           float r, g, s;
           chromaticity(sb[x], sg[x], sr[x], r, g, s);
-          const float dr = cur_r[x] - r, dg = cur_g[x] - g, ds = cur_s[x] - s;
+          const float dr = cur_r[x] - r, dg = cur_g[x] - g, ds = cur_s[x] * gs - s;
           acc[x] += exp_neg(dr * dr * k.r + dg * dg * k.g + ds * ds * k.s);
         }
       }

@@ -62,11 +62,13 @@ struct TbdLikelihoodParams {
   // On the synthetic end-to-end scene of tests/ these defaults cost ~0.03 MOTA (0.93 -> 0.90).
   double delta_b = 2e-3;
   // Side of the square structuring element of the morphological closing of y (Section 3.2);
-  // 0 or 1 disables it. Must be 0 or odd. 5 (was 3): on PETS09-S2L1's KDE output it joins the
-  // fragments of a silhouette (XVID blocks, clothes close to the background colour); first 300
-  // frames, delta_b 1.5e-3, calibrated MOTA 0.22 with 5 vs 0.11 with 3; 7 was worse (second half,
-  // delta_b 2e-3: 0.24 vs 0.32 with 5).
-  int closing_size = 5;
+  // 0 or 1 disables it. Must be 0 or odd. Default 0 because vtrack's KDE background already
+  // closes y with a 5 x 5 square (KdeBackgroundParams::closing), and a second closing of that
+  // image changes nothing; set 5 when y comes from elsewhere unclosed. (Measured with the KDE's
+  // former 3 x 3 closing, on PETS09-S2L1's KDE output a 5 x 5 closing here joined the fragments
+  // of a silhouette: first 300 frames, delta_b 1.5e-3, calibrated MOTA 0.22 with 5 vs 0.11 with
+  // 3; 7 was worse, second half, delta_b 2e-3: 0.24 vs 0.32 with 5.)
+  int closing_size = 0;
 };
 
 // Throws InvalidArgument naming the parameter when a value is out of range.
