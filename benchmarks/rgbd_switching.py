@@ -44,7 +44,7 @@ sys.path.insert(0, os.path.dirname(__file__))
 from _table import print_table  # noqa: E402
 
 import vtrack  # noqa: E402
-from vtrack.rgbd import identity_events, make_rgbd_scene  # noqa: E402
+from vtrack.rgbd import burst_outcomes, clear_mot, identity_events, make_rgbd_scene  # noqa: E402
 
 METHODS = {
     "switching (particle + depth)": dict(density="particle", switching=True),
@@ -58,6 +58,8 @@ ABLATIONS = {
                                                            mask_detections=False),
     "switching, births without depth": dict(density="particle", switching=True,
                                             depth_for_births=False),
+    "switching, no occlusion ordering": dict(density="particle", switching=True,
+                                             occlusion_margin=float("inf")),
 }
 C = 1.0  # OSPA cut-off (m)
 
@@ -95,8 +97,12 @@ def score(scene, frames):
     ospa2 = vtrack.ospa2(trajectories(truth, scene.frames), trajectories(frames, scene.frames),
                          c=C, p=1.0).distance
     ev = identity_events(scene, frames, gate=0.5)
+    mot = clear_mot(scene, frames, gate=0.5)
+    bo = burst_outcomes(scene, frames, gate=0.5)
     return dict(ospa=float(np.mean(ospa)), ospa2=float(ospa2), switches=ev.label_switches,
-                frag=ev.fragmentations, burst=ev.burst_coverage, card=float(np.mean(card)))
+                frag=ev.fragmentations, burst=ev.burst_coverage, card=float(np.mean(card)),
+                idsw=mot["IDSW"], te_frag=mot["Frag"], idf1=mot["IDF1"], kept=bo.kept,
+                relabelled=bo.relabelled, lost=bo.lost)
 
 
 COLOURS = [(31, 119, 180), (255, 127, 14), (44, 160, 44), (214, 39, 40), (148, 103, 189),
@@ -191,15 +197,20 @@ def main():
     rows = []
     for method, results in per_method.items():
         med = {key: median(r[key] for r in results) for key in results[0]}
-        total = {key: sum(r[key] for r in results) for key in ("switches", "frag")}
+        total = {key: sum(r[key] for r in results)
+                 for key in ("switches", "frag", "idsw", "te_frag", "kept", "relabelled", "lost")}
         rows.append([method, f"{med['ospa']:.3f}", f"{med['ospa2']:.3f}",
                      f"{med['switches']:.0f} ({total['switches']})",
-                     f"{med['frag']:.0f} ({total['frag']})", f"{med['burst']:.2f}",
-                     f"{med['card']:.3f}", f"{med['ms']:.2f}"])
+                     f"{med['frag']:.0f} ({total['frag']})",
+                     f"{med['idsw']:.0f} ({total['idsw']})",
+                     f"{med['te_frag']:.0f} ({total['te_frag']})", f"{med['idf1']:.3f}",
+                     f"{total['kept']} / {total['relabelled']} / {total['lost']}",
+                     f"{med['burst']:.2f}", f"{med['card']:.3f}", f"{med['ms']:.2f}"])
     print(f"RGB-D switching observation model, {args.seeds} seeds x {args.frames} frames, "
           f"{args.particles} particles/track, depth model {depth_params}; medians over seeds "
           "(totals in brackets)\n")
     print_table(["tracker", "OSPA (m)", "OSPA(2) (m)", "label switches", "fragmentations",
+                 "IDSW (TrackEval)", "Frag (TrackEval)", "IDF1", "bursts kept/relab./lost",
                  "burst coverage", "card. err.", "ms/scan"], rows)
     if args.figure:
         print(f"\nfigure (seed {args.figure_seed}): {args.figure}")

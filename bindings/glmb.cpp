@@ -114,6 +114,9 @@ given (the paper's particle implementation):
                         scoring missed tracks (default True: a detected person's pixels are
                         explained by the detection, so duplicate tracks cannot live on them;
                         False = eq. 4 on the raw image, as the paper)
+  occlusion_margin      with mask_detections: pixels of a detection's footprint are left out of the
+                        eq. 4 score of states farther than its depth + this margin (m; default 0.3,
+                        inf = off): the detected person hides them
 
 The Gaussian filter with Murty's ranking is deterministic (no random numbers). step() releases the GIL; one tracker
 must not be stepped from two threads at once.
@@ -128,7 +131,7 @@ must not be stepped from two threads at once.
                        const std::string& ranking, std::optional<int> particles,
                        std::optional<models::DepthLikelihood> depth_model,
                        double resample_threshold, std::uint64_t seed, bool depth_for_births,
-                       bool mask_detections) {
+                       bool mask_detections, double occlusion_margin) {
              GlmbParams p;
              p.survival_probability = survival_probability;
              p.detection_probability = detection_probability;
@@ -159,6 +162,7 @@ must not be stepped from two threads at once.
              pp.seed = seed;
              pp.depth_for_births = depth_for_births;
              pp.mask_detections = mask_detections;
+             pp.occlusion_margin = occlusion_margin;
              return GlmbTracker{ParticleGlmbFilter(motion, observation, births_from(births), p, pp,
                                                    std::move(depth_model))};
            }),
@@ -177,7 +181,8 @@ must not be stepped from two threads at once.
            py::arg("resample_threshold") = particle_defaults.resample_threshold,
            py::arg("seed") = particle_defaults.seed,
            py::arg("depth_for_births") = particle_defaults.depth_for_births,
-           py::arg("mask_detections") = particle_defaults.mask_detections)
+           py::arg("mask_detections") = particle_defaults.mask_detections,
+           py::arg("occlusion_margin") = particle_defaults.occlusion_margin)
       .def(
           "step",
           [](GlmbTracker& t, const py::handle& detections, const py::handle& depth) {

@@ -35,6 +35,10 @@ ParticleTracks::ParticleTracks(ParticleParams params, const models::LinearGaussi
   if (params_.particles < 2) {
     throw InvalidArgument("particles must be >= 2, got " + std::to_string(params_.particles));
   }
+  if (!(params_.occlusion_margin >= 0.0)) {
+    throw InvalidArgument("occlusion_margin must be >= 0 (or +inf: off), got " +
+                          std::to_string(params_.occlusion_margin));
+  }
   if (!(params_.resample_threshold >= 0.0) || params_.resample_threshold > 1.0) {
     throw InvalidArgument("resample_threshold must lie in [0, 1], got " +
                           std::to_string(params_.resample_threshold));
@@ -72,14 +76,19 @@ void ParticleTracks::set_depth(const cv::Mat* depth,
     return;
   }
   cv::Mat masked = depth->clone();
+  std::vector<models::Occluder> occluders;
   for (Eigen::Index j = 0; j < detections.cols(); ++j) {
     if (detections.rows() != 3) break;  // the filter reports the shape error
     const image::Rect r = depth_model_->footprint(detections(0, j), detections(1, j), detections(2, j));
     if (r.width > 0 && r.height > 0 && r.x + r.width <= masked.cols && r.y + r.height <= masked.rows) {
       masked(cv::Rect(r.x, r.y, r.width, r.height)).setTo(0.0);
+      if (std::isfinite(params_.occlusion_margin)) {
+        occluders.push_back({r, detections(2, j) + params_.occlusion_margin});
+      }
     }
   }
   depth_frame_ = depth_model_->frame(masked);
+  depth_frame_->occluders = std::move(occluders);
 }
 
 ParticleDensity ParticleTracks::predict(const Density& prior,

@@ -110,12 +110,25 @@ void DepthLikelihood::log_ratio(const DepthFrame& frame,
   for (Eigen::Index p = 0; p < positions.cols(); ++p) {
     const double D = positions(2, p);
     const image::Rect r = footprint(positions(0, p), positions(1, p), D);
-    const double n = static_cast<double>(r.width) * r.height;
+    double n = static_cast<double>(r.width) * r.height;
     if (n == 0.0) {
       out[p] = 0.0;
       continue;
     }
-    const double s1 = frame.sum.sum(r), s2 = frame.sum_squares.sum(r);
+    double s1 = frame.sum.sum(r), s2 = frame.sum_squares.sum(r);
+    for (const Occluder& o : frame.occluders) {
+      if (!(D > o.hides_beyond)) continue;
+      const int x0 = std::max(r.x, o.rect.x), x1 = std::min(r.x + r.width, o.rect.x + o.rect.width);
+      const int y0 = std::max(r.y, o.rect.y), y1 = std::min(r.y + r.height, o.rect.y + o.rect.height);
+      if (x1 <= x0 || y1 <= y0) continue;
+      const image::Rect hidden{x0, y0, x1 - x0, y1 - y0};
+      n -= static_cast<double>(hidden.width) * hidden.height;
+      s1 -= frame.sum.sum(hidden);
+      s2 -= frame.sum_squares.sum(hidden);
+    }
+    if (!frame.occluders.empty()) {
+      n = std::max(n, 0.0), s1 = std::max(s1, 0.0), s2 = std::max(s2, 0.0);
+    }
     // sum over T(x) of log phi_i - log varphi_i, expanded so only S1, S2, n are needed.
     out[p] = tau * (-(s2 - 2.0 * D * s1 + n * D * D) / (2.0 * st2) + s2 / (2.0 * sb2) +
                     n * log_ratio_sigma);

@@ -77,6 +77,14 @@ struct ParticleParams {
   // image before the missed branches are scored. See the header comment; false = eq. (4) on the
   // raw depth image, as the paper.
   bool mask_detections = true;
+  // Occlusion ordering (with mask_detections): a detection's footprint T(z_j) hides everything
+  // farther than its depth D_j + occlusion_margin (m), so those pixels are left out of a farther
+  // state's eq. (4) product instead of counting as empty background (models::Occluder). Without
+  // it, a missed person walking behind a detected one loses the blanked pixels as evidence
+  // against them and their track dies (or drops out for a frame). The margin is 3 sigma of the
+  // detections' depth noise (eq. 2's Sigma, 0.1 m in vtrack.rgbd): a duplicate track on the
+  // detected person is not "behind" them and still finds an empty footprint. +inf disables.
+  double occlusion_margin = 0.3;
 };
 
 class ParticleTracks {
