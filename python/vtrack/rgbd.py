@@ -374,7 +374,8 @@ def clear_mot(scene: RgbdScene, estimates, gate: float = 0.5) -> Dict[str, float
     1 - distance / (2 gate), clipped at 0, so TrackEval's match threshold 0.5 is a distance of
     `gate` metres (HOTA's thresholds 0.05..0.95 span distances 1.9 gate .. 0.1 gate). Unlike
     identity_events, TrackEval keeps last frame's matches where they remain valid before
-    assigning the rest (CLEAR-MOT), so crossing people are not re-paired frame by frame."""
+    assigning the rest (CLEAR-MOT), so crossing people are not re-paired frame by frame; and it
+    skips a frame with no estimates at all without ending the matches (no Frag for that gap)."""
     from .evaluate import evaluate_sequence
     labels = sorted({lab for frame in estimates for lab, _ in frame})
     label_index = {lab: i for i, lab in enumerate(labels)}

@@ -117,10 +117,19 @@ ParticleTracks::Candidate ParticleTracks::candidate(
   // The Gaussian moment match only gates (it is never used for weights); its covariance is
   // positive definite because Sigma is.
   models::KalmanInnovation gate(moments(predicted), observation);
-  Candidate c{std::move(predicted), std::move(gate), std::move(z), {}, 0.0};
+  Candidate c{std::move(predicted), std::move(gate), std::move(z), {}, 0.0, {}};
   if (depth_frame_ && (!is_birth || params_.depth_for_births)) {
     c.depth_log_ratio.resize(c.predicted.x.cols());
-    depth_model_->log_ratio(*depth_frame_, c.predicted_z, c.depth_log_ratio);
+    Eigen::VectorXd visible;
+    depth_model_->log_ratio(*depth_frame_, c.predicted_z, c.depth_log_ratio, &visible);
+    if (params_.occluded_detection_probability && visible.minCoeff() < 1.0) {
+      // Eq. (8) with p_D(x) = p_D v(x): the detected branch gains log v(x) per particle, the
+      // missed branch log((1 - p_D v(x)) / (1 - p_D)) (the engine adds log(1 - p_D)).
+      const double pd = detection_probability_;
+      c.log_visible = visible.array().log();
+      c.depth_log_ratio.array() +=
+          ((1.0 - pd * visible.array()) / (1.0 - pd)).log();
+    }
     // log eta_depth = log sum_p w_p g2(d|x_p) / prod_all varphi (the common product cancels).
     c.log_eta_depth = core::log_sum_exp(c.predicted.log_w + c.depth_log_ratio);
   }
@@ -147,6 +156,7 @@ void ParticleTracks::log_detection_likelihoods(const Candidate& c,
       continue;
     }
     log_g1(c, z.col(j), lg);
+    if (c.log_visible.size() > 0) lg += c.log_visible;  // p_D(x) / p_D, see candidate()
     // eta = sum_p w_p g1(z|x_p) (eq. 2 under the particle density).
     out[j] = core::log_sum_exp(c.predicted.log_w + lg);
   }
@@ -177,6 +187,7 @@ ParticleDensity ParticleTracks::reweight(const Density& prior, const Eigen::Vect
 ParticleDensity ParticleTracks::detected(const Candidate& c,
                                          const Eigen::Ref<const Eigen::VectorXd>& z) {
   log_g1(c, z, scratch_);
+  if (c.log_visible.size() > 0) scratch_ += c.log_visible;
   return reweight(c.predicted, scratch_);
 }
 
@@ -206,6 +217,7 @@ ParticleGlmbFilter::ParticleGlmbFilter(models::LinearGaussianMotion motion,
     cholesky_of(births[b].density.cov, "birth covariance " + std::to_string(b));
   }
   if (params.adaptive_birth.enabled) cholesky_of(params.adaptive_birth.cov, "adaptive_birth cov");
+  tracks_model_.set_detection_probability(params.detection_probability);
 }
 
 void ParticleGlmbFilter::step(const Eigen::Ref<const Eigen::MatrixXd>& detections,

@@ -97,7 +97,7 @@ image::Rect DepthLikelihood::footprint(double X, double Y, double D) const {
 
 void DepthLikelihood::log_ratio(const DepthFrame& frame,
                                 const Eigen::Ref<const Eigen::Matrix3Xd>& positions,
-                                Eigen::Ref<Eigen::VectorXd> out) const {
+                                Eigen::Ref<Eigen::VectorXd> out, Eigen::VectorXd* visible) const {
   if (out.size() != positions.cols()) {
     throw InvalidArgument("log_ratio: out must have one entry per position");
   }
@@ -105,6 +105,7 @@ void DepthLikelihood::log_ratio(const DepthFrame& frame,
   const double sb2 = params_.sigma_background * params_.sigma_background;
   const double log_ratio_sigma = std::log(params_.sigma_background / params_.sigma_target);
   const double tau = params_.tempering;
+  if (visible) visible->setOnes(positions.cols());
   // One pass per state: a footprint, four table look-ups per integral image, a few flops. The
   // look-ups are gathers, so this loop is not SIMD, but it is O(1) per particle and inlined.
   for (Eigen::Index p = 0; p < positions.cols(); ++p) {
@@ -127,7 +128,9 @@ void DepthLikelihood::log_ratio(const DepthFrame& frame,
       s2 -= frame.sum_squares.sum(hidden);
     }
     if (!frame.occluders.empty()) {
+      const double whole = static_cast<double>(r.width) * r.height;
       n = std::max(n, 0.0), s1 = std::max(s1, 0.0), s2 = std::max(s2, 0.0);
+      if (visible) (*visible)[p] = n / whole;
     }
     // sum over T(x) of log phi_i - log varphi_i, expanded so only S1, S2, n are needed.
     out[p] = tau * (-(s2 - 2.0 * D * s1 + n * D * D) / (2.0 * st2) + s2 / (2.0 * sb2) +

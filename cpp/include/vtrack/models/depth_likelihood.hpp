@@ -138,8 +138,10 @@ class DepthLikelihood {
   // hides_beyond) are left out of the product -- the target is behind a nearer surface there, so
   // it predicts nothing about those pixels (their phi/varphi ratio is 1). Overlapping occluders
   // are not de-duplicated: the removed count is clamped to |T(x)| (and S1, S2 to >= 0).
+  // visible (optional, resized to n): the fraction of T(x) that no occluder hides (1 for an
+  // empty footprint).
   void log_ratio(const DepthFrame& frame, const Eigen::Ref<const Eigen::Matrix3Xd>& positions,
-                 Eigen::Ref<Eigen::VectorXd> out) const;
+                 Eigen::Ref<Eigen::VectorXd> out, Eigen::VectorXd* visible = nullptr) const;
 
  private:
   DepthLikelihoodParams params_;
