@@ -34,6 +34,30 @@ Metrics per run (medians over seeds in the table):
               still has an estimate within 0.5 m
   card. err.  mean |n_est - n_true|
   ms/scan     median wall time of one step (depth rendering excluded; one thread)
+Measured (python benchmarks/rgbd_switching.py --ablations, 5 seeds x 300 frames; medians, totals
+in brackets; ms/scan on a shared 2-core machine):
+
+  tracker                        OSPA   OSPA(2) switches frag.   IDSW(TE) Frag(TE) IDF1  bursts k/r/l cov. card.
+  switching (particle + depth)   0.152  0.835   16 (99)  8 (40)  15 (84)  8 (37)  0.659 30/21/1      0.72 0.303
+  particle, detection-only       0.263  0.907   14 (72) 12 (57)  13 (68) 12 (55)  0.458  0/51/1      0.10 0.713
+  gaussian, detection-only       0.249  0.866   11 (55) 12 (56)  11 (55) 12 (54)  0.547  0/51/1      0.10 0.707
+  switching, eq. 4 unmasked      0.751  0.864  109 (545) 0 (3)   4 (22)  0 (3)   0.407 32/20/0      1.00 9.757
+  switching, births w/o depth    0.138  0.803   16 (99)  7 (36)  13 (81)  7 (33)  0.664 33/18/1      0.72 0.277
+  switching, no occlusion order  0.171  0.861   13 (76) 17 (86)  11 (58) 17 (83)  0.600 28/23/1      0.64 0.390
+
+The paper's claim holds per burst: the switching model keeps the person's label across 30 of 52
+scored bursts; both detection-only filters keep none (51 relabelled, the person re-born after the
+burst). Total label switches are NOT lower (99 vs 72 / 55), by either count. Per-event diagnosis
+(seeds 0-4): of the switching model's 99 switches, 49 return to a label the person had earlier,
+42 of them within 10 frames -- the estimate alternating between two labels on one person (the
+estimator takes the best hypothesis of the MAP cardinality afresh at every scan; with depth,
+competing hypotheses that keep different labels alive on the same person survive longer than
+without) -- against 8 of 72 for the detection-only particle filter; most of the rest are
+re-births after a burst or start-up duplicates. A label-consistent estimator belongs in the
+GlmbFilter engine (not changed here). Before occlusion ordering, 46 of the 86 fragmentations
+were one-frame drop-outs of a track that came back with the same label, nearly all while the
+person's footprint overlapped another's in the image (see particle_glmb.hpp).
+
 Also writes a figure (OpenCV drawing): X of true and estimated tracks against time for one seed,
 one panel per tracker, missed-detection bursts shaded.
 """
