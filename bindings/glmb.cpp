@@ -114,6 +114,12 @@ given (the paper's particle implementation):
                         scoring missed tracks (default True: a detected person's pixels are
                         explained by the detection, so duplicate tracks cannot live on them;
                         False = eq. 4 on the raw image, as the paper)
+  occlusion_margin      with mask_detections: pixels of a detection's footprint are left out of the
+                        eq. 4 score of states farther than its depth + this margin (m; default 0.3,
+                        inf = off): the detected person hides them
+  occluded_detection_probability  with occlusion: p_D(x) = p_D x the visible fraction of T(x)
+                        (default False: it lets duplicates live behind detected people; eq. 8's
+                        state-dependent p_D)
 
 The Gaussian filter with Murty's ranking is deterministic (no random numbers). step() releases the GIL; one tracker
 must not be stepped from two threads at once.
@@ -128,7 +134,8 @@ must not be stepped from two threads at once.
                        const std::string& ranking, std::optional<int> particles,
                        std::optional<models::DepthLikelihood> depth_model,
                        double resample_threshold, std::uint64_t seed, bool depth_for_births,
-                       bool mask_detections) {
+                       bool mask_detections, double occlusion_margin,
+                       bool occluded_detection_probability) {
              GlmbParams p;
              p.survival_probability = survival_probability;
              p.detection_probability = detection_probability;
@@ -159,6 +166,8 @@ must not be stepped from two threads at once.
              pp.seed = seed;
              pp.depth_for_births = depth_for_births;
              pp.mask_detections = mask_detections;
+             pp.occlusion_margin = occlusion_margin;
+             pp.occluded_detection_probability = occluded_detection_probability;
              return GlmbTracker{ParticleGlmbFilter(motion, observation, births_from(births), p, pp,
                                                    std::move(depth_model))};
            }),
@@ -177,7 +186,10 @@ must not be stepped from two threads at once.
            py::arg("resample_threshold") = particle_defaults.resample_threshold,
            py::arg("seed") = particle_defaults.seed,
            py::arg("depth_for_births") = particle_defaults.depth_for_births,
-           py::arg("mask_detections") = particle_defaults.mask_detections)
+           py::arg("mask_detections") = particle_defaults.mask_detections,
+           py::arg("occlusion_margin") = particle_defaults.occlusion_margin,
+           py::arg("occluded_detection_probability") =
+               particle_defaults.occluded_detection_probability)
       .def(
           "step",
           [](GlmbTracker& t, const py::handle& detections, const py::handle& depth) {

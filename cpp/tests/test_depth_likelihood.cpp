@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include <opencv2/core.hpp>
 
@@ -28,8 +29,9 @@ DepthLikelihoodParams small_camera() {
 
 // Eq. (4)'s log ratio by a loop over the footprint's pixels, the footprint computed here from
 // the pinhole formulas (round to the nearest pixel edge, clip), independently of the model.
+// Pixels inside an occluder that hides the state (D > hides_beyond) are skipped.
 double brute_force_log_ratio(const DepthLikelihoodParams& p, const cv::Mat& d, double X, double Y,
-                             double D) {
+                             double D, const std::vector<models::Occluder>& occluders = {}) {
   if (D <= p.min_depth) return 0.0;
   const auto& c = p.camera;
   const double u = c.cx + c.fx * X / D, v = c.cy + c.fy * Y / D;
@@ -42,6 +44,12 @@ double brute_force_log_ratio(const DepthLikelihoodParams& p, const cv::Mat& d, d
   double total = 0.0;
   for (int y = y0; y < y1; ++y) {
     for (int x = x0; x < x1; ++x) {
+      bool hidden = false;
+      for (const auto& o : occluders) {
+        hidden = hidden || (D > o.hides_beyond && x >= o.rect.x && x < o.rect.x + o.rect.width &&
+                            y >= o.rect.y && y < o.rect.y + o.rect.height);
+      }
+      if (hidden) continue;
       const double di = d.at<float>(y, x);
       const double log_phi = -0.5 * log2pi - std::log(p.sigma_target) -
                              (di - D) * (di - D) / (2 * p.sigma_target * p.sigma_target);
@@ -117,6 +125,34 @@ TEST(DepthLikelihood, IntegralImagesMatchABruteForcePixelSum) {
     }
     EXPECT_GT(clipped, 10);  // the border case was exercised
   }
+}
+
+TEST(DepthLikelihood, OccludedPixelsAreLeftOutOfTheProduct) {
+  const auto p = small_camera();
+  const DepthLikelihood model(p);
+  core::Rng rng(5);
+  cv::Mat d(30, 40, CV_32F);
+  for (int y = 0; y < d.rows; ++y) {
+    for (int x = 0; x < d.cols; ++x) {
+      d.at<float>(y, x) = rng.uniform() < 0.4 ? 0.0f : static_cast<float>(rng.uniform(1.0, 6.0));
+    }
+  }
+  auto frame = model.frame(d);
+  // Two disjoint occluders at different depths: each hides only the states behind it.
+  frame.occluders = {{{5, 2, 12, 20}, 2.5}, {{22, 8, 10, 15}, 4.0}};
+  Eigen::Matrix3Xd x(3, 300);
+  for (int i = 0; i < x.cols(); ++i) {
+    x.col(i) << rng.uniform(-2.0, 2.0), rng.uniform(-1.5, 1.5), rng.uniform(0.5, 7.0);
+  }
+  Eigen::VectorXd out(x.cols());
+  model.log_ratio(frame, x, out);
+  int hidden_states = 0;
+  for (int i = 0; i < x.cols(); ++i) {
+    const double expected = brute_force_log_ratio(p, d, x(0, i), x(1, i), x(2, i), frame.occluders);
+    EXPECT_NEAR(out[i], expected, 1e-9 * (1.0 + std::abs(expected))) << i;
+    hidden_states += std::abs(expected - brute_force_log_ratio(p, d, x(0, i), x(1, i), x(2, i))) > 1e-9;
+  }
+  EXPECT_GT(hidden_states, 50);  // occlusion changed many scores
 }
 
 TEST(DepthLikelihood, PrefersTheTrueDepthAndPosition) {

@@ -208,6 +208,8 @@ class GlmbTracker:
         seed: int = 0,
         depth_for_births: bool = True,
         mask_detections: bool = True,
+        occlusion_margin: float = 0.3,
+        occluded_detection_probability: bool = False,
     ) -> None: ...
     def step(
         self, detections: ArrayLike, depth: Optional[npt.NDArray[Union[np.float32, np.float64]]] = None

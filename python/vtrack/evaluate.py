@@ -87,11 +87,20 @@ def _sequence_data(gt: np.ndarray, tracks: np.ndarray) -> dict:
 def evaluate(gt: np.ndarray, tracks: np.ndarray) -> Dict[str, float]:
     """Metrics of `tracks` against `gt`, both MOT arrays (N, >= 7) as :func:`vtrack.mot.read_mot`
     returns. GT rows with confidence 0 are dropped (MOT15)."""
-    trackeval = _trackeval()
     gt = _table(gt, "gt")
     tracks = _table(tracks, "tracks")
     gt = gt[gt[:, 6] != 0]
     data = _sequence_data(gt, tracks)
+    return {**evaluate_sequence(data), "GT": int(len(gt)), "Tracks": int(len(tracks))}
+
+
+def evaluate_sequence(data: dict) -> Dict[str, float]:
+    """TrackEval's CLEAR, Identity and HOTA on one sequence in TrackEval's own form (a dict with
+    num_timesteps, num_gt_ids, num_tracker_ids, num_gt_dets, num_tracker_dets and per-frame
+    gt_ids, tracker_ids, similarity_scores; a pair matches when its similarity is >= 0.5). Used
+    with box IoU by :func:`evaluate` and with a 3-D distance similarity by
+    :func:`vtrack.rgbd.clear_mot`."""
+    trackeval = _trackeval()
     with contextlib.redirect_stdout(io.StringIO()):
         clear = trackeval.metrics.CLEAR({"PRINT_CONFIG": False}).eval_sequence(data)
         ident = trackeval.metrics.Identity({"PRINT_CONFIG": False}).eval_sequence(data)
@@ -100,9 +109,8 @@ def evaluate(gt: np.ndarray, tracks: np.ndarray) -> Dict[str, float]:
         "MOTA": float(clear["MOTA"]), "MOTP": float(clear["MOTP"]), "IDF1": float(ident["IDF1"]),
         "HOTA": float(np.mean(hota["HOTA"])), "DetA": float(np.mean(hota["DetA"])),
         "AssA": float(np.mean(hota["AssA"])), "IDSW": int(clear["IDSW"]),
-        "FP": int(clear["CLR_FP"]), "FN": int(clear["CLR_FN"]), "GT": int(len(gt)),
-        "Tracks": int(len(tracks)), "GT_IDs": int(data["num_gt_ids"]),
-        "Track_IDs": int(data["num_tracker_ids"]),
+        "Frag": int(clear["Frag"]), "FP": int(clear["CLR_FP"]), "FN": int(clear["CLR_FN"]),
+        "GT_IDs": int(data["num_gt_ids"]), "Track_IDs": int(data["num_tracker_ids"]),
     }
 
 

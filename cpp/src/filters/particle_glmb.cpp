@@ -35,6 +35,10 @@ ParticleTracks::ParticleTracks(ParticleParams params, const models::LinearGaussi
   if (params_.particles < 2) {
     throw InvalidArgument("particles must be >= 2, got " + std::to_string(params_.particles));
   }
+  if (!(params_.occlusion_margin >= 0.0)) {
+    throw InvalidArgument("occlusion_margin must be >= 0 (or +inf: off), got " +
+                          std::to_string(params_.occlusion_margin));
+  }
   if (!(params_.resample_threshold >= 0.0) || params_.resample_threshold > 1.0) {
     throw InvalidArgument("resample_threshold must lie in [0, 1], got " +
                           std::to_string(params_.resample_threshold));
@@ -72,14 +76,19 @@ void ParticleTracks::set_depth(const cv::Mat* depth,
     return;
   }
   cv::Mat masked = depth->clone();
+  std::vector<models::Occluder> occluders;
   for (Eigen::Index j = 0; j < detections.cols(); ++j) {
     if (detections.rows() != 3) break;  // the filter reports the shape error
     const image::Rect r = depth_model_->footprint(detections(0, j), detections(1, j), detections(2, j));
     if (r.width > 0 && r.height > 0 && r.x + r.width <= masked.cols && r.y + r.height <= masked.rows) {
       masked(cv::Rect(r.x, r.y, r.width, r.height)).setTo(0.0);
+      if (std::isfinite(params_.occlusion_margin)) {
+        occluders.push_back({r, detections(2, j) + params_.occlusion_margin});
+      }
     }
   }
   depth_frame_ = depth_model_->frame(masked);
+  depth_frame_->occluders = std::move(occluders);
 }
 
 ParticleDensity ParticleTracks::predict(const Density& prior,
@@ -108,10 +117,19 @@ ParticleTracks::Candidate ParticleTracks::candidate(
   // The Gaussian moment match only gates (it is never used for weights); its covariance is
   // positive definite because Sigma is.
   models::KalmanInnovation gate(moments(predicted), observation);
-  Candidate c{std::move(predicted), std::move(gate), std::move(z), {}, 0.0};
+  Candidate c{std::move(predicted), std::move(gate), std::move(z), {}, 0.0, {}};
   if (depth_frame_ && (!is_birth || params_.depth_for_births)) {
     c.depth_log_ratio.resize(c.predicted.x.cols());
-    depth_model_->log_ratio(*depth_frame_, c.predicted_z, c.depth_log_ratio);
+    Eigen::VectorXd visible;
+    depth_model_->log_ratio(*depth_frame_, c.predicted_z, c.depth_log_ratio, &visible);
+    if (params_.occluded_detection_probability && visible.minCoeff() < 1.0) {
+      // Eq. (8) with p_D(x) = p_D v(x): the detected branch gains log v(x) per particle, the
+      // missed branch log((1 - p_D v(x)) / (1 - p_D)) (the engine adds log(1 - p_D)).
+      const double pd = detection_probability_;
+      c.log_visible = visible.array().log();
+      c.depth_log_ratio.array() +=
+          ((1.0 - pd * visible.array()) / (1.0 - pd)).log();
+    }
     // log eta_depth = log sum_p w_p g2(d|x_p) / prod_all varphi (the common product cancels).
     c.log_eta_depth = core::log_sum_exp(c.predicted.log_w + c.depth_log_ratio);
   }
@@ -138,6 +156,7 @@ void ParticleTracks::log_detection_likelihoods(const Candidate& c,
       continue;
     }
     log_g1(c, z.col(j), lg);
+    if (c.log_visible.size() > 0) lg += c.log_visible;  // p_D(x) / p_D, see candidate()
     // eta = sum_p w_p g1(z|x_p) (eq. 2 under the particle density).
     out[j] = core::log_sum_exp(c.predicted.log_w + lg);
   }
@@ -168,6 +187,7 @@ ParticleDensity ParticleTracks::reweight(const Density& prior, const Eigen::Vect
 ParticleDensity ParticleTracks::detected(const Candidate& c,
                                          const Eigen::Ref<const Eigen::VectorXd>& z) {
   log_g1(c, z, scratch_);
+  if (c.log_visible.size() > 0) scratch_ += c.log_visible;
   return reweight(c.predicted, scratch_);
 }
 
@@ -197,6 +217,7 @@ ParticleGlmbFilter::ParticleGlmbFilter(models::LinearGaussianMotion motion,
     cholesky_of(births[b].density.cov, "birth covariance " + std::to_string(b));
   }
   if (params.adaptive_birth.enabled) cholesky_of(params.adaptive_birth.cov, "adaptive_birth cov");
+  tracks_model_.set_detection_probability(params.detection_probability);
 }
 
 void ParticleGlmbFilter::step(const Eigen::Ref<const Eigen::MatrixXd>& detections,

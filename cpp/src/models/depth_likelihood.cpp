@@ -97,7 +97,7 @@ image::Rect DepthLikelihood::footprint(double X, double Y, double D) const {
 
 void DepthLikelihood::log_ratio(const DepthFrame& frame,
                                 const Eigen::Ref<const Eigen::Matrix3Xd>& positions,
-                                Eigen::Ref<Eigen::VectorXd> out) const {
+                                Eigen::Ref<Eigen::VectorXd> out, Eigen::VectorXd* visible) const {
   if (out.size() != positions.cols()) {
     throw InvalidArgument("log_ratio: out must have one entry per position");
   }
@@ -105,17 +105,33 @@ void DepthLikelihood::log_ratio(const DepthFrame& frame,
   const double sb2 = params_.sigma_background * params_.sigma_background;
   const double log_ratio_sigma = std::log(params_.sigma_background / params_.sigma_target);
   const double tau = params_.tempering;
+  if (visible) visible->setOnes(positions.cols());
   // One pass per state: a footprint, four table look-ups per integral image, a few flops. The
   // look-ups are gathers, so this loop is not SIMD, but it is O(1) per particle and inlined.
   for (Eigen::Index p = 0; p < positions.cols(); ++p) {
     const double D = positions(2, p);
     const image::Rect r = footprint(positions(0, p), positions(1, p), D);
-    const double n = static_cast<double>(r.width) * r.height;
+    double n = static_cast<double>(r.width) * r.height;
     if (n == 0.0) {
       out[p] = 0.0;
       continue;
     }
-    const double s1 = frame.sum.sum(r), s2 = frame.sum_squares.sum(r);
+    double s1 = frame.sum.sum(r), s2 = frame.sum_squares.sum(r);
+    for (const Occluder& o : frame.occluders) {
+      if (!(D > o.hides_beyond)) continue;
+      const int x0 = std::max(r.x, o.rect.x), x1 = std::min(r.x + r.width, o.rect.x + o.rect.width);
+      const int y0 = std::max(r.y, o.rect.y), y1 = std::min(r.y + r.height, o.rect.y + o.rect.height);
+      if (x1 <= x0 || y1 <= y0) continue;
+      const image::Rect hidden{x0, y0, x1 - x0, y1 - y0};
+      n -= static_cast<double>(hidden.width) * hidden.height;
+      s1 -= frame.sum.sum(hidden);
+      s2 -= frame.sum_squares.sum(hidden);
+    }
+    if (!frame.occluders.empty()) {
+      const double whole = static_cast<double>(r.width) * r.height;
+      n = std::max(n, 0.0), s1 = std::max(s1, 0.0), s2 = std::max(s2, 0.0);
+      if (visible) (*visible)[p] = n / whole;
+    }
     // sum over T(x) of log phi_i - log varphi_i, expanded so only S1, S2, n are needed.
     out[p] = tau * (-(s2 - 2.0 * D * s1 + n * D * D) / (2.0 * st2) + s2 / (2.0 * sb2) +
                     n * log_ratio_sigma);

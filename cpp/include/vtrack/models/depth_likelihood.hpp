@@ -106,10 +106,20 @@ struct DepthLikelihoodParams {
   double min_depth = 0.1;  // states nearer than this (m) have an empty footprint
 };
 
-// The two integral images eq. (4) needs for one depth image: of d and of d^2.
+// A region of the image known to be covered by a surface at some depth (the footprint of a
+// detected person): a target farther than `hides_beyond` is hidden there, so those pixels of its
+// T(x) say nothing about it (see DepthLikelihood::log_ratio).
+struct Occluder {
+  image::Rect rect;
+  double hides_beyond = 0.0;  // metres: states with D > hides_beyond are occluded by rect
+};
+
+// The two integral images eq. (4) needs for one depth image: of d and of d^2; and the occluders
+// of this scan (none unless the caller adds them).
 struct DepthFrame {
   image::IntegralImage sum;
   image::IntegralImage sum_squares;
+  std::vector<Occluder> occluders;
 };
 
 class DepthLikelihood {
@@ -123,9 +133,15 @@ class DepthLikelihood {
   // T(x) for a position (X, Y, D), clipped to the image (empty when D <= min_depth).
   image::Rect footprint(double X, double Y, double D) const;
   // Tempered log ratio tempering * log prod_{T(x)} phi/varphi for each column (X, Y, D) of a
-  // 3 x n matrix of positions, written to out (size n). O(1) per state.
+  // 3 x n matrix of positions, written to out (size n). O(1) per state (and per occluder).
+  // Occlusion: the pixels of T(x) inside an occluder of the frame that hides the state (D >
+  // hides_beyond) are left out of the product -- the target is behind a nearer surface there, so
+  // it predicts nothing about those pixels (their phi/varphi ratio is 1). Overlapping occluders
+  // are not de-duplicated: the removed count is clamped to |T(x)| (and S1, S2 to >= 0).
+  // visible (optional, resized to n): the fraction of T(x) that no occluder hides (1 for an
+  // empty footprint).
   void log_ratio(const DepthFrame& frame, const Eigen::Ref<const Eigen::Matrix3Xd>& positions,
-                 Eigen::Ref<Eigen::VectorXd> out) const;
+                 Eigen::Ref<Eigen::VectorXd> out, Eigen::VectorXd* visible = nullptr) const;
 
  private:
   DepthLikelihoodParams params_;
