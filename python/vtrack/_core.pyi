@@ -399,6 +399,8 @@ def track_detections(
     last_frame: int = 0,
     detection_probability: float = ...,
     survival_probability: float = ...,
+    outside_survival_probability: float = ...,
+    outside_detection_probability: float = ...,
     clutter_rate: float = ...,
     sigma_accel: float = ...,
     sigma_size: float = ...,
@@ -412,6 +414,9 @@ def track_detections(
     hypothesis_budget: int = ...,
     gate_threshold: float = ...,
     min_confidence: float = ...,
+    min_age: int = ...,
+    gibbs_ranking: bool = ...,
+    seed: int = ...,
 ) -> npt.NDArray[np.float64]: ...
 
 class BoxTracker:
@@ -421,6 +426,8 @@ class BoxTracker:
         *,
         detection_probability: float = ...,
         survival_probability: float = ...,
+        outside_survival_probability: float = ...,
+        outside_detection_probability: float = ...,
         clutter_rate: float = ...,
         sigma_accel: float = ...,
         sigma_size: float = ...,
@@ -434,6 +441,9 @@ class BoxTracker:
         hypothesis_budget: int = ...,
         gate_threshold: float = ...,
         min_confidence: float = ...,
+        min_age: int = ...,
+        gibbs_ranking: bool = ...,
+        seed: int = ...,
     ) -> None: ...
     def step(self, boxes: ArrayLike) -> npt.NDArray[np.float64]: ...
     @property
