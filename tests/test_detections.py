@@ -97,7 +97,8 @@ def test_confidence_filter_and_empty_input():
     with pytest.raises(ValueError, match="image_size"):
         vtrack.track_detections(det, image_size=(0, 480))
 
-    with pytest.raises(ValueError, match="outside_survival_probability must be in \\(0, 1\\), got 0"):
+    with pytest.raises(ValueError,
+                       match="outside_survival_probability must be in \\(0, 1\\), got 0"):
         vtrack.track_detections(det, image_size=(640, 480), outside_survival_probability=0.0)
     with pytest.raises(ValueError, match="outside_detection_probability must be in"):
         vtrack.track_detections(det, image_size=(640, 480), outside_detection_probability=1.0)

@@ -101,7 +101,8 @@ filters::GlmbParams box_glmb_params(const BoxTrackerParams& p, double width, dou
   g.hypothesis_budget = p.hypothesis_budget;
   g.max_hypotheses = p.hypothesis_budget;
   g.gate_threshold = p.gate_threshold;
-  g.ranking = p.gibbs_ranking ? filters::HypothesisRanking::gibbs : filters::HypothesisRanking::murty;
+  g.ranking = p.gibbs_ranking ? filters::HypothesisRanking::gibbs
+                              : filters::HypothesisRanking::murty;
   g.seed = static_cast<std::uint64_t>(p.seed);
   g.adaptive_birth.enabled = true;
   g.adaptive_birth.expected_births = p.birth_rate;

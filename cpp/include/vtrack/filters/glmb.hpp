@@ -71,8 +71,8 @@ enum class HypothesisRanking {
 // for unconstrained components, e.g. velocities).
 //
 // Why: with a constant p_S a track that has left the surveillance region keeps "alive and missed"
-// (cost -log p_S (1 - p_D)) cheaper per scan than "dead" (-log (1 - p_S)) whenever p_S > 1/(2 - p_D),
-// so it can fly off for ever once the hypotheses where it died earlier are truncated. A small p_S
+// (cost -log p_S (1 - p_D)) cheaper per scan than "dead" (-log (1 - p_S)) whenever
+// p_S > 1 / (2 - p_D), so it can fly off for ever once the hypotheses where it died earlier are truncated. A small p_S
 // outside makes death the best assignment there; a small p_D outside says a target leaving the
 // view is not expected to be detected, so missing it is no evidence against its existence.
 //
