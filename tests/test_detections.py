@@ -97,6 +97,45 @@ def test_confidence_filter_and_empty_input():
     with pytest.raises(ValueError, match="image_size"):
         vtrack.track_detections(det, image_size=(0, 480))
 
+    with pytest.raises(ValueError,
+                       match="outside_survival_probability must be in \\(0, 1\\), got 0"):
+        vtrack.track_detections(det, image_size=(640, 480), outside_survival_probability=0.0)
+    with pytest.raises(ValueError, match="outside_detection_probability must be in"):
+        vtrack.track_detections(det, image_size=(640, 480), outside_detection_probability=1.0)
+
+
+def walker_leaving_the_image(frames=60):
+    """One 40 x 100 px walker at 6 px/frame to the right in a 640 x 480 image, detected exactly
+    in every frame while its box centre is inside the image (frames 1-54, centre x 320 .. 638),
+    never after. Returns (det rows, last detected frame)."""
+    det = []
+    for f in range(1, frames + 1):
+        x = 300.0 + 6.0 * (f - 1)
+        if x + 20.0 <= 640.0:  # centre inside
+            det.append([f, -1, x, 200.0, 40.0, 100.0, 1.0])
+    return np.array(det), int(det[-1][0])
+
+
+@pytest.mark.parametrize("budget", [1, 200])
+def test_a_track_that_leaves_the_image_is_dropped(budget):
+    # With a constant p_S (outside_* equal to the inside values: the tracker before p_S(x)) and
+    # one hypothesis a frame, "alive and missed" (-log 0.99 * 0.2 = 1.6 nats) always beats "dead"
+    # (-log 0.01 = 4.6): the track flies off for ever (the PETS09 ghost). p_S(x) = p_D(x) = 0.1
+    # outside the image (eqs. 6 and 8) ends it within a few frames of its centre leaving.
+    det, last = walker_leaving_the_image()
+    frames = 60
+    model = dict(hypothesis_budget=budget, detection_sd_centre=3.0, sigma_accel=0.5)
+    out = vtrack.track_detections(det, image_size=(640, 480), last_frame=frames, **model)
+    assert set(out[out[:, 0] <= last, 0]) == set(range(2, last + 1))  # tracked while visible
+    assert out[:, 0].max() <= last + 3  # dropped within 3 frames of the last detection
+    constant = vtrack.track_detections(det, image_size=(640, 480), last_frame=frames,
+                                       outside_survival_probability=0.99,
+                                       outside_detection_probability=0.8, **model)
+    if budget == 1:
+        # The old behaviour: still reported in the last frame, its box far outside the image.
+        assert constant[:, 0].max() == frames
+        assert constant[constant[:, 0] == frames, 2].min() > 640.0
+
 
 def write_det(path, det):
     """A MOT det file of the rows (the format other tools write: %g numbers)."""
@@ -259,3 +298,23 @@ def test_cli_video_with_hog_matches_python(vtrack_cli, write_video, tmp_path):
     cli = read_mot(out)
     assert cli.shape == tracks.shape
     np.testing.assert_allclose(cli[:, :6], tracks[:, :6], atol=0.0051)
+
+
+def test_min_age_confirms_tracks_and_gibbs_ranking_is_seeded():
+    det, last = walker_leaving_the_image()
+    # The walker's track is born at frame 2 from frame 1's detection (adaptive birth): age 1 at
+    # frame 2, so min_age a reports it from frame a + 1 on, with the same boxes as min_age 1.
+    every = vtrack.track_detections(det, image_size=(640, 480), detection_sd_centre=3.0)
+    for a in (1, 3, 5):
+        out = vtrack.track_detections(det, image_size=(640, 480), detection_sd_centre=3.0,
+                                      min_age=a)
+        assert out[:, 0].min() == a + 1
+        np.testing.assert_array_equal(out, every[every[:, 0] >= a + 1])
+    with pytest.raises(ValueError, match="min_age must be >= 1, got 0"):
+        vtrack.track_detections(det, image_size=(640, 480), min_age=0)
+    _, scene = synthetic_scene(seed=1, frames=30)
+    runs = [vtrack.track_detections(scene, image_size=(640, 480), gibbs_ranking=True, seed=s,
+                                    hypothesis_budget=50, **SCENE_MODEL) for s in (7, 7)]
+    np.testing.assert_array_equal(runs[0], runs[1])
+    with pytest.raises(ValueError, match="seed must be >= 0"):
+        vtrack.track_detections(scene, image_size=(640, 480), seed=-1)

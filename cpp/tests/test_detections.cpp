@@ -216,6 +216,7 @@ TEST(BoxTracker, EveryParameterIsReachableByName) {
     vtrack::apps::ParameterValue changed = value;
     if (auto* d = std::get_if<double>(&changed)) *d = std::isfinite(*d) ? *d * 0.5 : 0.25;
     if (auto* i = std::get_if<long long>(&changed)) *i += 1;
+    if (auto* b = std::get_if<bool>(&changed)) *b = !*b;
     ASSERT_TRUE(vtrack::apps::set_parameter(p, name, changed)) << name;
   }
   for (const auto& [name, value] : vtrack::apps::parameter_values(p)) {

@@ -218,3 +218,80 @@ TEST(Glmb, AdaptiveBirthNeedsACovarianceOfTheStateDimension) {
   EXPECT_THROW(GaussianGlmbFilter(standard_motion(), standard_observation(), standard_births(), params),
                InvalidArgument);
 }
+
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// Scans at which a GLMB (one requested hypothesis per scan: the best assignment only) still
+// reports a target that walks out of the field of view [-1000, 1000]^2 at 10 m/s along x and is
+// detected (noise-free) only while inside it. 40 scans.
+std::vector<std::size_t> estimates_of_a_leaving_target(bool field_of_view) {
+  GaussianBirth birth{0.5, {Eigen::Vector4d(900, 10, 0, 0), Eigen::Matrix4d::Identity() * 100.0}};
+  GlmbParams params;
+  params.hypothesis_budget = 1;  // the truncation that keeps a ghost: only the best assignment
+  params.field_of_view.enabled = field_of_view;
+  params.field_of_view.lower = Eigen::Vector4d(-1000, -kInfinity, -1000, -kInfinity);
+  params.field_of_view.upper = Eigen::Vector4d(1000, kInfinity, 1000, kInfinity);
+  GaussianGlmbFilter glmb(standard_motion(), standard_observation(), {birth}, params);
+  const auto obs = standard_observation();
+  std::vector<std::size_t> counts;
+  Eigen::Vector4d truth(900, 10, 0, 0);
+  for (int k = 1; k <= 40; ++k) {
+    const bool inside = truth[0] <= 1000.0;
+    glmb.step(inside ? Eigen::MatrixXd(obs.H * truth) : Eigen::MatrixXd(2, 0));
+    counts.push_back(glmb.estimates().size());
+    truth = standard_motion().F * truth;
+  }
+  return counts;
+}
+
+}  // namespace
+
+TEST(Glmb, FieldOfViewEndsATrackThatLeavesIt) {
+  // Detected at scans 1-11 (x = 900 .. 1000), never after. With a constant p_S = 0.99 and
+  // p_D = 0.98, "alive and missed" costs -log(0.99 * 0.02) = 3.9 nats against "dead"
+  // -log(0.01) = 4.6, so the best assignment keeps the track for ever (eq. 6's constant p_S).
+  // Outside the field of view p_S = p_D = 0.1: -log(0.1 * 0.9) = 2.4 against -log(0.9) = 0.1,
+  // the track dies as soon as its mean is outside.
+  const auto with = estimates_of_a_leaving_target(true);
+  const auto without = estimates_of_a_leaving_target(false);
+  for (int k = 2; k <= 11; ++k) {
+    EXPECT_EQ(with[k - 1], 1u) << "scan " << k;
+    EXPECT_EQ(without[k - 1], 1u) << "scan " << k;
+  }
+  for (int k = 15; k <= 40; ++k) {
+    EXPECT_EQ(with[k - 1], 0u) << "field of view, scan " << k;
+    EXPECT_EQ(without[k - 1], 1u) << "constant p_S, scan " << k;
+  }
+}
+
+TEST(Glmb, FieldOfViewNeedsBoundsOfTheStateDimensionAndProbabilities) {
+  auto rejects = [](auto edit) {
+    GlmbParams params;
+    params.field_of_view.enabled = true;
+    params.field_of_view.lower = Eigen::Vector4d::Constant(-1.0);
+    params.field_of_view.upper = Eigen::Vector4d::Constant(1.0);
+    edit(params.field_of_view);
+    try {
+      GaussianGlmbFilter(standard_motion(), standard_observation(), standard_births(), params);
+    } catch (const InvalidArgument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(rejects([](filters::FieldOfView&) {}), "no error");
+  EXPECT_NE(rejects([](filters::FieldOfView& f) { f.lower = Eigen::Vector2d::Zero(); })
+                .find("field_of_view lower and upper must have 4 components"),
+            std::string::npos);
+  EXPECT_NE(rejects([](filters::FieldOfView& f) { f.lower[2] = 2.0; }).find("lower <= upper"),
+            std::string::npos);
+  EXPECT_NE(rejects([](filters::FieldOfView& f) { f.upper[0] = std::nan(""); }).find("NaN"),
+            std::string::npos);
+  EXPECT_NE(rejects([](filters::FieldOfView& f) { f.outside_survival_probability = 0.0; })
+                .find("outside_survival_probability must lie in (0, 1]"),
+            std::string::npos);
+  EXPECT_NE(rejects([](filters::FieldOfView& f) { f.outside_detection_probability = 1.5; })
+                .find("outside_detection_probability"),
+            std::string::npos);
+}

@@ -401,6 +401,8 @@ def track_detections(
     last_frame: int = 0,
     detection_probability: float = ...,
     survival_probability: float = ...,
+    outside_survival_probability: float = ...,
+    outside_detection_probability: float = ...,
     clutter_rate: float = ...,
     sigma_accel: float = ...,
     sigma_size: float = ...,
@@ -414,6 +416,9 @@ def track_detections(
     hypothesis_budget: int = ...,
     gate_threshold: float = ...,
     min_confidence: float = ...,
+    min_age: int = ...,
+    gibbs_ranking: bool = ...,
+    seed: int = ...,
 ) -> npt.NDArray[np.float64]: ...
 
 class BoxTracker:
@@ -423,6 +428,8 @@ class BoxTracker:
         *,
         detection_probability: float = ...,
         survival_probability: float = ...,
+        outside_survival_probability: float = ...,
+        outside_detection_probability: float = ...,
         clutter_rate: float = ...,
         sigma_accel: float = ...,
         sigma_size: float = ...,
@@ -436,6 +443,9 @@ class BoxTracker:
         hypothesis_budget: int = ...,
         gate_threshold: float = ...,
         min_confidence: float = ...,
+        min_age: int = ...,
+        gibbs_ranking: bool = ...,
+        seed: int = ...,
     ) -> None: ...
     def step(self, boxes: ArrayLike) -> npt.NDArray[np.float64]: ...
     @property

@@ -90,6 +90,8 @@ const std::vector<std::pair<std::string, Field<BoxTrackerParams>>>& box_fields()
   static const std::vector<std::pair<std::string, F>> table = {
       {"detection_probability", F{&P::detection_probability}},
       {"survival_probability", F{&P::survival_probability}},
+      {"outside_survival_probability", F{&P::outside_survival_probability}},
+      {"outside_detection_probability", F{&P::outside_detection_probability}},
       {"clutter_rate", F{&P::clutter_rate}},
       {"sigma_accel", F{&P::sigma_accel}},
       {"sigma_size", F{&P::sigma_size}},
@@ -103,6 +105,9 @@ const std::vector<std::pair<std::string, Field<BoxTrackerParams>>>& box_fields()
       {"hypothesis_budget", F{&P::hypothesis_budget}},
       {"gate_threshold", F{&P::gate_threshold}},
       {"min_confidence", F{&P::min_confidence}},
+      {"min_age", F{&P::min_age}},
+      {"gibbs_ranking", F{&P::gibbs_ranking}},
+      {"seed", F{&P::seed}},
   };
   return table;
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <sstream>
 
@@ -40,6 +41,10 @@ void validate(const BoxTrackerParams& p) {
           p.detection_probability, "in (0, 1)");
   require(p.survival_probability > 0 && p.survival_probability < 1, "survival_probability",
           p.survival_probability, "in (0, 1)");
+  require(p.outside_survival_probability > 0 && p.outside_survival_probability < 1,
+          "outside_survival_probability", p.outside_survival_probability, "in (0, 1)");
+  require(p.outside_detection_probability > 0 && p.outside_detection_probability < 1,
+          "outside_detection_probability", p.outside_detection_probability, "in (0, 1)");
   const std::pair<const char*, double> positive[] = {
       {"clutter_rate", p.clutter_rate},           {"sigma_accel", p.sigma_accel},
       {"sigma_size", p.sigma_size},               {"detection_sd_centre", p.detection_sd_centre},
@@ -49,6 +54,8 @@ void validate(const BoxTrackerParams& p) {
   for (const auto& [name, v] : positive) require(v > 0 && std::isfinite(v), name, v, "> 0 and finite");
   require(p.birth_max_existence > 0 && p.birth_max_existence < 1, "birth_max_existence",
           p.birth_max_existence, "in (0, 1)");
+  require(p.min_age >= 1, "min_age", p.min_age, ">= 1");
+  require(p.seed >= 0, "seed", p.seed, ">= 0");
   require(p.hypothesis_budget > 0, "hypothesis_budget", p.hypothesis_budget, "> 0");
   require(p.gate_threshold > 0, "gate_threshold", p.gate_threshold, "> 0 (or inf for no gating)");
   require(!std::isnan(p.min_confidence), "min_confidence", p.min_confidence, "a number");
@@ -79,11 +86,24 @@ filters::GlmbParams box_glmb_params(const BoxTrackerParams& p, double width, dou
   filters::GlmbParams g;
   g.survival_probability = p.survival_probability;
   g.detection_probability = p.detection_probability;
+  // The field of view: box centres (cx, cy) in the image, velocities and sizes unconstrained.
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  g.field_of_view.enabled = true;
+  g.field_of_view.lower = Eigen::VectorXd::Constant(6, -inf);
+  g.field_of_view.upper = Eigen::VectorXd::Constant(6, inf);
+  g.field_of_view.lower(0) = g.field_of_view.lower(2) = 0.0;
+  g.field_of_view.upper(0) = width;
+  g.field_of_view.upper(2) = height;
+  g.field_of_view.outside_survival_probability = p.outside_survival_probability;
+  g.field_of_view.outside_detection_probability = p.outside_detection_probability;
   // Uniform clutter over centre (W x H) and size ([0, W] x [0, H]): volume (W H)^2.
   g.clutter_intensity = p.clutter_rate / ((width * height) * (width * height));
   g.hypothesis_budget = p.hypothesis_budget;
   g.max_hypotheses = p.hypothesis_budget;
   g.gate_threshold = p.gate_threshold;
+  g.ranking = p.gibbs_ranking ? filters::HypothesisRanking::gibbs
+                              : filters::HypothesisRanking::murty;
+  g.seed = static_cast<std::uint64_t>(p.seed);
   g.adaptive_birth.enabled = true;
   g.adaptive_birth.expected_births = p.birth_rate;
   g.adaptive_birth.max_existence = p.birth_max_existence;
@@ -108,6 +128,7 @@ std::vector<BoxTrack> BoxTracker::step(const std::vector<Detection>& detections)
   filter_.step(observations(kept));
   std::vector<BoxTrack> out;
   for (const auto& e : filter_.estimates()) {
+    if (filter_.time() - e.label.birth_time + 1 < params_.min_age) continue;  // not confirmed yet
     const auto key = std::make_pair(e.label.birth_time, e.label.birth_index);
     const auto it = ids_.emplace(key, ids_.size() + 1).first;
     const double w = e.mean(4), h = e.mean(5);

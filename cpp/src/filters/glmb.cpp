@@ -86,6 +86,22 @@ GlmbFilter<Tracks>::GlmbFilter(models::LinearGaussianMotion motion,
                             " has the wrong state dimension");
     }
   }
+  const auto& fov = params_.field_of_view;
+  if (fov.enabled) {
+    if (fov.lower.size() != x_dim || fov.upper.size() != x_dim) {
+      throw InvalidArgument("field_of_view lower and upper must have " + std::to_string(x_dim) +
+                            " components, got " + std::to_string(fov.lower.size()) + " and " +
+                            std::to_string(fov.upper.size()));
+    }
+    if (fov.lower.array().isNaN().any() || fov.upper.array().isNaN().any() ||
+        !(fov.lower.array() <= fov.upper.array()).all()) {
+      throw InvalidArgument("field_of_view needs lower <= upper in every component (no NaN)");
+    }
+    require_probability(fov.outside_survival_probability,
+                        "field_of_view outside_survival_probability");
+    require_probability(fov.outside_detection_probability,
+                        "field_of_view outside_detection_probability");
+  }
   const auto& adaptive = params_.adaptive_birth;
   if (adaptive.enabled) {
     if (!(adaptive.expected_births > 0.0) || !std::isfinite(adaptive.expected_births)) {
@@ -137,23 +153,35 @@ void GlmbFilter<Tracks>::step(const Eigen::Ref<const Eigen::MatrixXd>& detection
   Eigen::VectorXd log_exists(n_rows), log_absent(n_rows), log_missed(n_rows);
   Eigen::MatrixXd log_detected(n_rows, n_det);
   Eigen::RowVectorXd log_g(n_det);
+  const FieldOfView& fov = params_.field_of_view;
   const double log_pd_over_kappa =
       std::log(params_.detection_probability) - std::log(params_.clutter_intensity);
   const double log_miss = std::log1p(-params_.detection_probability);
+  // p_D(x) outside the field of view (eq. 8), used by rows whose predicted mean is outside.
+  const double log_pd_over_kappa_out =
+      std::log(fov.outside_detection_probability) - std::log(params_.clutter_intensity);
+  const double log_miss_out = std::log1p(-fov.outside_detection_probability);
   for (int r = 0; r < n_rows; ++r) {
     const bool is_birth = r >= n_prior;
-    candidates.push_back(tracks_model_.candidate(
-        is_birth ? tracks_model_.birth(birth(r - n_prior).density)
-                 : tracks_model_.predict(tracks_[r].density, motion_),
-        observation_, is_birth));
-    const double p_exist = is_birth ? birth(r - n_prior).existence : params_.survival_probability;
+    // p_S(x) at the prior mean (eq. 6); births exist with their own probability.
+    double p_exist = is_birth ? birth(r - n_prior).existence : params_.survival_probability;
+    if (fov.enabled && !is_birth && !fov.contains(Tracks::moments(tracks_[r].density).mean)) {
+      p_exist = fov.outside_survival_probability;
+    }
+    Density predicted = is_birth ? tracks_model_.birth(birth(r - n_prior).density)
+                                 : tracks_model_.predict(tracks_[r].density, motion_);
+    // p_D(x) at the predicted mean (eq. 8).
+    const bool detectable = !fov.enabled || fov.contains(Tracks::moments(predicted).mean);
+    candidates.push_back(tracks_model_.candidate(std::move(predicted), observation_, is_birth));
     log_exists[r] = std::log(p_exist);
     log_absent[r] = std::log1p(-p_exist);
-    log_missed[r] = log_miss + tracks_model_.log_missed_likelihood(candidates.back());
+    log_missed[r] = (detectable ? log_miss : log_miss_out) +
+                    tracks_model_.log_missed_likelihood(candidates.back());
     tracks_model_.log_detection_likelihoods(candidates.back(), detections,
                                             params_.gate_threshold, log_g);
+    const double log_pd_k = detectable ? log_pd_over_kappa : log_pd_over_kappa_out;
     for (int j = 0; j < n_det; ++j) {
-      log_detected(r, j) = log_g[j] > -kInf ? log_pd_over_kappa + log_g[j] : -kInf;
+      log_detected(r, j) = log_g[j] > -kInf ? log_pd_k + log_g[j] : -kInf;
     }
   }
 

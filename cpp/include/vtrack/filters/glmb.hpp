@@ -64,9 +64,36 @@ enum class HypothesisRanking {
   gibbs,
 };
 
+// State-dependent survival and detection probabilities, the paper's p_S,k(x, l) (eq. 6) and
+// p_D,k(x, l) (eq. 8), in their simplest useful form: a field of view. Inside the axis-aligned box
+// lower <= x <= upper of state space the constant GlmbParams p_S and p_D apply; outside it
+// `outside_survival_probability` and `outside_detection_probability` do (use -inf / +inf bounds
+// for unconstrained components, e.g. velocities).
+//
+// Why: with a constant p_S a track that has left the surveillance region keeps "alive and missed"
+// (cost -log p_S (1 - p_D)) cheaper per scan than "dead" (-log (1 - p_S)) whenever
+// p_S > 1 / (2 - p_D), so it can fly off for ever once the hypotheses where it died earlier are truncated. A small p_S
+// outside makes death the best assignment there; a small p_D outside says a target leaving the
+// view is not expected to be detected, so missing it is no evidence against its existence.
+//
+// The integrals of eqs. 6 and 8, eta_S(l) = <p_S(., l), p(., l)> over the prior density and
+// <p_D(., l), p(., l)> over the predicted one, are approximated by p_S and p_D at the densities'
+// means (exact away from the border, where a track spends one or two scans). Disabled (the
+// default), the filter computes exactly what it did with constant probabilities.
+struct FieldOfView {
+  bool enabled = false;
+  Eigen::VectorXd lower, upper;  // x_dim each, lower <= upper
+  double outside_survival_probability = 0.1;   // p_S(x) for x outside (eq. 6)
+  double outside_detection_probability = 0.1;  // p_D(x) for x outside (eq. 8)
+  // True when x lies in the box (bounds included).
+  bool contains(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+    return (x.array() >= lower.array()).all() && (x.array() <= upper.array()).all();
+  }
+};
+
 struct GlmbParams {
-  double survival_probability = 0.99;   // p_S (eq. 6)
-  double detection_probability = 0.98;  // p_D (eq. 8's psi)
+  double survival_probability = 0.99;   // p_S (eq. 6) inside the field of view (everywhere if off)
+  double detection_probability = 0.98;  // p_D (eq. 8's psi) inside the field of view
   // Poisson clutter intensity kappa(z) per unit measurement volume (uniform clutter: mean count
   // divided by the surveillance volume). The standard scenario's 30 / 2000^2 = 7.5e-6.
   double clutter_intensity = 7.5e-6;
@@ -80,6 +107,7 @@ struct GlmbParams {
   // +inf disables gating (exact but slower).
   double gate_threshold = 32.24;
   AdaptiveBirthParams adaptive_birth;
+  FieldOfView field_of_view;  // state-dependent p_S and p_D (off: constant)
   HypothesisRanking ranking = HypothesisRanking::murty;
   std::uint64_t seed = 0;  // the Gibbs sampler's engine (unused by Murty's ranking)
 };
