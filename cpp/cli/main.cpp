@@ -288,7 +288,6 @@ std::pair<double, double> parse_image_size(const std::string& text) {
 }
 
 int run_track_glmb(const TrackOptions& o) {
-  if (o.seed >= 0) throw UsageError("--seed does not apply to --method glmb (it is deterministic)");
   if (!o.detections.empty()) {
     if (!o.input.empty()) throw UsageError("give either a VIDEO or --detections, not both");
     for (const auto& [flag, value] : {std::pair{"--detector", o.detector},
@@ -309,6 +308,8 @@ int run_track_glmb(const TrackOptions& o) {
   }
   vtrack::apps::GlmbPipelineParams params;
   if (!o.config.empty()) vtrack::apps::load_pipeline_config(o.config, params);
+  // The seed matters only with gibbs_ranking (Murty's ranking is deterministic).
+  if (o.seed >= 0) params.tracker.seed = static_cast<int>(o.seed);
   apply_settings(o.settings, {setter(params.detector), setter(params.tracker)});
   validate_usage([&] {
     vtrack::apps::validate(params.detector);
@@ -402,9 +403,10 @@ const std::vector<Command>& commands() {
        "vtrack track VIDEO --out TRACKS [--method mb] [--render OUT.mp4] [--config FILE]\n"
        "                    [--seed N] [--set name=value ...]\n"
        "       vtrack track VIDEO --method glmb --detector hog --out TRACKS [--render OUT.mp4]\n"
-       "                    [--save-detections DET] [--config FILE] [--set name=value ...]\n"
+       "                    [--save-detections DET] [--config FILE] [--seed N]\n"
+       "                    [--set name=value ...]\n"
        "       vtrack track --detections DET --method glmb --out TRACKS [--image-size WxH]\n"
-       "                    [--config FILE] [--set name=value ...]\n\n"
+       "                    [--config FILE] [--seed N] [--set name=value ...]\n\n"
        "  VIDEO            a video file or a folder of images\n"
        "  --out TRACKS     MOTChallenge text: frame,id,x,y,w,h,conf,-1,-1,-1 (frames from 1,\n"
        "                   conf = existence probability); written only when tracking succeeded\n"
@@ -424,7 +426,8 @@ const std::vector<Command>& commands() {
        "                   person_fraction) and\n"
        "                   tracker (detection_probability, clutter_rate, sigma_accel, ...; see\n"
        "                   vtrack.BoxTracker.default_params() in Python)\n"
-       "  --seed N         mb's random seed (default 0): the same seed gives the same tracks\n"
+       "  --seed N         random seed (default 0): the same seed gives the same tracks (mb; glmb\n"
+       "                   with gibbs_ranking -- Murty's ranking is deterministic)\n"
        "  --set name=value override one parameter of a config section (repeatable)",
        run_track},
   };
