@@ -6,19 +6,12 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 #include "vtrack/apps/video_writer.hpp"
 #include "vtrack/core/errors.hpp"
 
 namespace vtrack::apps {
 namespace {
-
-std::string number_text(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 
 // Trims spaces and tabs (MOT files written by other tools sometimes pad the fields).
 std::string trimmed(const std::string& s) {
@@ -51,10 +44,10 @@ void validate_detection(const Detection& d, const std::string& where) {
   const std::pair<const char*, double> fields[] = {
       {"x", d.x}, {"y", d.y}, {"w", d.w}, {"h", d.h}, {"conf", d.confidence}};
   for (const auto& [name, v] : fields) {
-    if (!std::isfinite(v)) throw InvalidArgument(where + name + " must be finite, got " + number_text(v));
+    if (!std::isfinite(v)) throw InvalidArgument(where + name + " must be finite, got " + value_text(v));
   }
-  if (!(d.w > 0)) throw InvalidArgument(where + "w must be > 0, got " + number_text(d.w));
-  if (!(d.h > 0)) throw InvalidArgument(where + "h must be > 0, got " + number_text(d.h));
+  if (!(d.w > 0)) throw InvalidArgument(where + "w must be > 0, got " + value_text(d.w));
+  if (!(d.h > 0)) throw InvalidArgument(where + "h must be > 0, got " + value_text(d.h));
 }
 
 std::vector<Detection> read_detections(const std::string& path, double min_confidence) {

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 #include <memory>
-#include <sstream>
 
 #include "vtrack/apps/parameters.hpp"
 #include "vtrack/apps/video_source.hpp"
@@ -13,16 +12,6 @@
 
 namespace vtrack::apps {
 namespace {
-
-std::string text(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
-void require(bool ok, const char* name, double value, const char* range) {
-  if (!ok) throw InvalidArgument(std::string(name) + " must be " + range + ", got " + text(value));
-}
 
 // Rows: the detections' z = (cx, cy, w, h), one per column (the filter's layout).
 Eigen::MatrixXd observations(const std::vector<Detection>& detections) {

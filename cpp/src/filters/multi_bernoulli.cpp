@@ -13,12 +13,6 @@
 namespace vtrack::filters {
 namespace {
 
-std::string str(double v) { return cv::format("%g", v); }
-
-void require(bool ok, const char* name, double value, const char* what) {
-  if (!ok) throw InvalidArgument(std::string(name) + " must be " + what + ", got " + str(value));
-}
-
 void require_positive(const char* name, double v) {
   require(std::isfinite(v) && v > 0.0, name, v, "a positive finite number");
 }

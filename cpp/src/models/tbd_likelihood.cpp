@@ -10,23 +10,13 @@
 #include "vtrack/core/errors.hpp"
 
 namespace vtrack::models {
-namespace {
-
-std::string str(double v) {
-  std::string s = std::to_string(v);
-  // std::to_string prints 6 decimals: keep small values readable.
-  if (v != 0.0 && std::fabs(v) < 1e-3) s = cv::format("%g", v);
-  return s;
-}
-
-}  // namespace
 
 void validate(const TbdLikelihoodParams& p) {
   if (!(p.delta_f > 0.0) || !std::isfinite(p.delta_f)) {
-    throw InvalidArgument("delta_f must be a positive finite number, got " + str(p.delta_f));
+    throw InvalidArgument("delta_f must be a positive finite number, got " + value_text(p.delta_f));
   }
   if (!(p.delta_b > 0.0) || !std::isfinite(p.delta_b)) {
-    throw InvalidArgument("delta_b must be a positive finite number, got " + str(p.delta_b));
+    throw InvalidArgument("delta_b must be a positive finite number, got " + value_text(p.delta_b));
   }
   if (p.closing_size < 0 || (p.closing_size > 1 && p.closing_size % 2 == 0)) {
     throw InvalidArgument("closing_size must be 0, 1 or an odd number, got " +
@@ -72,7 +62,7 @@ void TbdLikelihood::set_image(const cv::Mat& y) {
       for (int c = 0; c < y.cols; ++c) {
         const float v = y.at<float>(r, c);
         if (!(v >= 0.0f && v <= 1.0f)) {
-          throw InvalidArgument("y must hold values in [0, 1] (no NaN), got " + str(v) +
+          throw InvalidArgument("y must hold values in [0, 1] (no NaN), got " + value_text(v) +
                                 " at row " + std::to_string(r) + ", column " + std::to_string(c));
         }
       }

@@ -2,6 +2,7 @@
 // The two error types of vtrack. Every public function reports bad input by throwing one of
 // these with a message that names the argument and its value; nothing in the library asserts on
 // user input, aborts or prints.
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -18,5 +19,19 @@ class IoError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+// A number as error messages show it: the shortest form that keeps its value readable (%g-like:
+// 0.001, 2e-07, 1e+06, nan, inf), unlike std::to_string's fixed six decimals.
+inline std::string value_text(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+// Throws InvalidArgument "<name> must be <what>, got <value>" unless `ok`: the one-line parameter
+// check of the params validators.
+inline void require(bool ok, const char* name, double value, const char* what) {
+  if (!ok) throw InvalidArgument(std::string(name) + " must be " + what + ", got " + value_text(value));
+}
 
 }  // namespace vtrack
