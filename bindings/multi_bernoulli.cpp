@@ -1,9 +1,6 @@
 // Bindings of vtrack::filters: the multi-Bernoulli track-before-detect tracker.
-#include <algorithm>
-#include <variant>
-
 #include "common.hpp"
-#include "vtrack/apps/parameters.hpp"
+#include "params.hpp"
 #include "vtrack/filters/multi_bernoulli.hpp"
 
 namespace vtrack::bindings {
@@ -16,29 +13,6 @@ int as_int(const std::string& name, const py::handle& v) {
     throw py::type_error(name + " must be an int, got " + type_name(v));
   }
   return py::int_(py::reinterpret_borrow<py::object>(v)).cast<int>();
-}
-
-MultiBernoulliParams params_from(const py::kwargs& kwargs) {
-  MultiBernoulliParams p;
-  const auto defaults = apps::parameter_values(p);
-  for (const auto& item : kwargs) {
-    const std::string name = item.first.cast<std::string>();
-    const auto it = std::find_if(defaults.begin(), defaults.end(),
-                                 [&](const auto& d) { return d.first == name; });
-    if (it == defaults.end()) {
-      throw py::type_error("MultiBernoulliTracker() got an unexpected keyword argument '" + name + "'");
-    }
-    apps::set_parameter(p, name, parameter_from_python(name, item.second, it->second));
-  }
-  return p;
-}
-
-py::dict params_dict(const MultiBernoulliParams& p) {
-  py::dict d;
-  for (const auto& [name, value] : apps::parameter_values(p)) {
-    d[name.c_str()] = std::visit([](const auto& v) { return py::cast(v); }, value);
-  }
-  return d;
 }
 
 std::string track_repr(const filters::Track& t) {
@@ -104,7 +78,9 @@ image y in [0, 1] (near 1 = background) to step(), which returns the confirmed t
              }
              const int w = as_int("image_size[0] (width)", size[0]);
              const int h = as_int("image_size[1] (height)", size[1]);
-             return filters::MultiBernoulliFilter(w, h, params_from(kwargs), seed);
+             MultiBernoulliParams params;
+             set_from_kwargs(params, kwargs, "tracker");
+             return filters::MultiBernoulliFilter(w, h, params, seed);
            }),
            py::arg("image_size"), py::kw_only(), py::arg("seed") = 0)
       .def(
