@@ -13,8 +13,8 @@ DATA ?= $(HOME)/.cache/vtrack
 VIDEO := $(DATA)/vtest.avi
 VIDEO_SHA256 := 45cddc9490be69345cbdab64ca583be65987e864ca408038e648db99e10516cf
 DEMO_OUT ?= demo-output
-# PETS09-S2L1 ground truth (MOT15), shipped beside the repository in shared/data.
-PETS_GT ?= ../shared/data/pets09-s2l1/gt.txt
+# PETS09-S2L1 ground truth (MOT15), shipped in data/ (data/pets09-s2l1/SOURCE.md).
+PETS_GT ?= data/pets09-s2l1/gt.txt
 APT_PACKAGES := build-essential libeigen3-dev libopencv-dev libgtest-dev
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 SOURCES := CMakeLists.txt pyproject.toml $(shell find cpp bindings python -type f -not -name '*.pyc' 2>/dev/null)
@@ -31,11 +31,9 @@ demo: $(VENV)/.vtrack-installed $(VIDEO)
 	$(VENV)/bin/vtrack track $(VIDEO) --method mb --out $(DEMO_OUT)/tracks.txt \
 	  --render $(DEMO_OUT)/tracks.mp4
 	$(PY) -m vtrack.contact_sheet --video $(VIDEO) --tracks $(DEMO_OUT)/tracks.txt \
-	  $(if $(wildcard $(PETS_GT)),--gt $(PETS_GT)) --out $(DEMO_OUT)/contact_sheet.png
-	@if [ -f $(PETS_GT) ]; then \
-	  echo "PETS09-S2L1 tracking metrics (TrackEval; GT conf-0 rows ignored):"; \
-	  $(PY) -m vtrack.evaluate --gt $(PETS_GT) --tracks $(DEMO_OUT)/tracks.txt; \
-	else echo "no ground truth at $(PETS_GT): metrics skipped"; fi
+	  --gt $(PETS_GT) --out $(DEMO_OUT)/contact_sheet.png
+	@echo "PETS09-S2L1 tracking metrics (TrackEval; GT conf-0 rows ignored):"
+	$(PY) -m vtrack.evaluate --gt $(PETS_GT) --tracks $(DEMO_OUT)/tracks.txt
 
 bench: $(VENV)/.vtrack-installed $(VENV)/.bench-deps $(VIDEO)
 	$(PY) benchmarks/resampling.py

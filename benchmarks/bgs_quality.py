@@ -17,8 +17,8 @@ vtrack's y, on vtrack's foreground mask and on the MOG2 and KNN foreground masks
 
     python benchmarks/bgs_quality.py [--video PATH] [--gt PATH] [--out PNG] [--threshold T]
 
-The GT defaults to $VTRACK_PETS_GT, else ../shared/data/pets09-s2l1/gt.txt relative to the
-repository root; without it the script says so and exits 0.
+The GT defaults to $VTRACK_PETS_GT, else data/pets09-s2l1/gt.txt of the repository (shipped with vtrack,
+data/pets09-s2l1/SOURCE.md); without it the script says so and exits 0.
 """
 
 from __future__ import annotations
@@ -42,7 +42,7 @@ def default_video() -> str:
 
 
 def default_gt() -> str:
-    return os.environ.get("VTRACK_PETS_GT", str(REPO.parent / "shared" / "data" / "pets09-s2l1" / "gt.txt"))
+    return os.environ.get("VTRACK_PETS_GT", str(REPO / "data" / "pets09-s2l1" / "gt.txt"))
 
 
 def load_gt(path: str):

@@ -2,7 +2,7 @@
 
 Usage: python benchmarks/glmb_standard.py [--draws N] [--quick]
 
-1. The ten fixed measurement draws of ../shared/data/glmb-standard (or $VTRACK_SHARED_DATA/
+1. The ten fixed measurement draws of data/glmb-standard (or $VTRACK_SHARED_DATA/
    glmb-standard): mean OSPA over the 100 scans (positions, c = 100, p = 1, the estimates as
    reported online at each scan), mean cardinality error |n_est - n_true| and median wall time per
    scan (vtrack.GlmbTracker.step, one thread), against the reference figures of the data README
@@ -37,7 +37,7 @@ REFERENCE_MEAN_OSPA_0_9 = 11.73
 
 
 def data_dir():
-    root = Path(os.environ.get("VTRACK_SHARED_DATA", REPO.parent / "shared" / "data"))
+    root = Path(os.environ.get("VTRACK_SHARED_DATA", REPO / "data"))
     return root / "glmb-standard"
 
 
@@ -57,7 +57,7 @@ def run(scenario, **params):
 
 
 def fixed_draw_scenarios():
-    """[(seed, scenario)] of the ten fixed draws present in the shared data (empty if absent)."""
+    """[(seed, scenario)] of the ten fixed draws present in data/glmb-standard (empty if absent)."""
     path = data_dir()
     if not (path / "truth.csv").exists():
         print(f"(shared data not found at {path}: fixed-draw tables skipped)\n")
@@ -85,7 +85,7 @@ def fixed_draws(draws):
     mean = float(np.mean(ospas))
     rows.append([f"mean of {len(ospas)}", f"**{mean:.2f}**", f"{REFERENCE_MEAN_OSPA_0_9:.2f}",
                  f"{mean / REFERENCE_MEAN_OSPA_0_9:.3f}", "", "", "", "", "", ""])
-    print("Standard GLMB scenario, the ten fixed draws (shared data); OSPA c = 100, p = 1 on "
+    print("Standard GLMB scenario, the ten fixed draws (data/glmb-standard); OSPA c = 100, p = 1 on "
           "positions, online estimates; time = median wall time of one step, one thread\n")
     print_table(["draw", "OSPA vtrack", "OSPA reference", "ratio", "card. err. vtrack",
                  "card. err. reference", "median ms/scan vtrack", "mean ms/scan vtrack",

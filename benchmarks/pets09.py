@@ -33,8 +33,8 @@ and IDF1. The held-out comparison is the second half (398-795), raw and calibrat
     python benchmarks/pets09.py [--first 1] [--last 795] [--video PATH] [--gt PATH]
                                 [--no-calibrate] [--seed 0] [--out-dir DIR]
 
-The GT defaults to $VTRACK_PETS_GT, else ../shared/data/pets09-s2l1/gt.txt relative to the
-repository root; the video to $VTRACK_VIDEO, else ~/.cache/vtrack/vtest.avi. Without either the
+The GT defaults to $VTRACK_PETS_GT, else data/pets09-s2l1/gt.txt of the repository (shipped with vtrack,
+data/pets09-s2l1/SOURCE.md); the video to $VTRACK_VIDEO, else ~/.cache/vtrack/vtest.avi. Without either the
 script says so and exits 0. Without `sort-track` the baseline row is skipped.
 
 How the MB defaults were chosen (the sweep; tracker seed 0, KDE y of all 795 frames computed once,
@@ -148,7 +148,7 @@ def default_video() -> str:
 
 def default_gt() -> str:
     return os.environ.get("VTRACK_PETS_GT",
-                          str(REPO.parent / "shared" / "data" / "pets09-s2l1" / "gt.txt"))
+                          str(REPO / "data" / "pets09-s2l1" / "gt.txt"))
 
 
 def read_frames(path: str, first: int, last: int):

@@ -61,12 +61,22 @@ def random_frames(count, height=48, width=64, seed=0):
     return [rng.integers(0, 256, (height, width, 3), dtype=np.uint8) for _ in range(count)]
 
 
+DATA = REPO / "data"
+
+
 @pytest.fixture(scope="session")
 def glmb_standard_dir() -> Path:
-    """The shared standard GLMB scenario (../shared/data/glmb-standard beside the repository, or
-    $VTRACK_SHARED_DATA/glmb-standard); the test is skipped when it is absent."""
-    root = Path(os.environ.get("VTRACK_SHARED_DATA", REPO.parent / "shared" / "data"))
-    path = root / "glmb-standard"
+    """The standard GLMB scenario shipped in data/glmb-standard (model, truth, ten fixed draws)."""
+    path = DATA / "glmb-standard"
     if not (path / "truth.csv").exists():
-        pytest.skip(f"shared GLMB data not found at {path} (set VTRACK_SHARED_DATA)")
+        pytest.fail(f"GLMB standard data missing at {path}: it ships with the repository")
+    return path
+
+
+@pytest.fixture(scope="session")
+def pets09_gt() -> Path:
+    """PETS09-S2L1's MOT15 ground truth, shipped in data/pets09-s2l1/gt.txt."""
+    path = DATA / "pets09-s2l1" / "gt.txt"
+    if not path.exists():
+        pytest.fail(f"PETS09-S2L1 ground truth missing at {path}: it ships with the repository")
     return path

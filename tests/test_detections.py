@@ -1,7 +1,6 @@
 """Detection-driven tracking: vtrack.read_detections, vtrack.track_detections (the C++ box GLMB
 tracker), `vtrack track --detections`, and vtrack.HogPeopleDetector."""
 
-import os
 from pathlib import Path
 
 import numpy as np
@@ -240,10 +239,6 @@ def test_cli_detections_errors(vtrack_cli, tmp_path):
     assert not out.exists()
 
 
-def vtest_path():
-    return Path(os.environ.get("VTRACK_VIDEO", Path.home() / ".cache" / "vtrack" / "vtest.avi"))
-
-
 def test_hog_detector_rejects_bad_frames():
     detector = vtrack.HogPeopleDetector(win_stride=16)
     assert detector.params["win_stride"] == 16
@@ -259,15 +254,10 @@ def test_hog_detector_rejects_bad_frames():
     assert out.shape == (0, 5) and out.dtype == np.float64
 
 
-def test_hog_detector_finds_the_people_of_a_pets09_frame():
-    path = vtest_path()
-    if not path.exists():
-        pytest.skip(f"vtest.avi not found at {path} (`make test` fetches it)")
+def test_hog_detector_finds_the_people_of_a_pets09_frame(sample_video, pets09_gt):
     cv2 = pytest.importorskip("cv2")
-    gt_path = Path(__file__).resolve().parents[2] / "shared" / "data" / "pets09-s2l1" / "gt.txt"
-    if not gt_path.exists():
-        pytest.skip(f"PETS09-S2L1 ground truth not found at {gt_path}")
-    cap = cv2.VideoCapture(str(path))
+    gt_path = pets09_gt
+    cap = cv2.VideoCapture(str(sample_video))
     for _ in range(100):
         ok, frame = cap.read()
     cap.release()
@@ -284,12 +274,9 @@ def test_hog_detector_finds_the_people_of_a_pets09_frame():
     assert np.all(np.diff(boxes[:, 4]) <= 0)  # best score first
 
 
-def test_cli_video_with_hog_matches_python(vtrack_cli, write_video, tmp_path):
-    path = vtest_path()
-    if not path.exists():
-        pytest.skip(f"vtest.avi not found at {path} (`make test` fetches it)")
+def test_cli_video_with_hog_matches_python(vtrack_cli, write_video, tmp_path, sample_video):
     cv2 = pytest.importorskip("cv2")
-    cap = cv2.VideoCapture(str(path))
+    cap = cv2.VideoCapture(str(sample_video))
     frames = []
     for _ in range(6):
         ok, frame = cap.read()

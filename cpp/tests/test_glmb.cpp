@@ -136,8 +136,8 @@ TEST(Glmb, RejectsBadInput) {
 }
 
 TEST(Glmb, StandardScenarioMatchesTheReferenceOspa) {
-  const std::string dir = std::string(VTRACK_SHARED_DATA) + "/glmb-standard";
-  if (!std::filesystem::exists(dir + "/seed0/measurements.csv")) GTEST_SKIP() << "no " << dir;
+  const std::string dir = std::string(VTRACK_DATA) + "/glmb-standard";
+  ASSERT_TRUE(std::filesystem::exists(dir + "/seed0/measurements.csv")) << "no " << dir;
   const auto scans = read_scans(dir + "/seed0/measurements.csv");
   const auto truth = read_truth(dir + "/truth.csv");
   GaussianGlmbFilter glmb(standard_motion(), standard_observation(), standard_births());
