@@ -74,6 +74,8 @@ from ._core import (
 
 # Pure-Python modules built on the compiled ones above.
 from . import mot, rgbd, scenarios, synthetic  # noqa: E402
+from .smc import *  # noqa: E402,F401,F403  (ParticleFilter, MCMCParticleFilter and their models)
+from . import smc  # noqa: E402
 
 RESAMPLING_METHODS = ("multinomial", "stratified", "systematic", "residual")
 
@@ -123,3 +125,4 @@ __all__ = [
     "VideoInfo",
     "__version__",
 ]
+__all__ += smc.__all__
