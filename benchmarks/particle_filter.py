@@ -298,7 +298,13 @@ def available(module):
         return False
 
 
+_warmed = set()
+
+
 def measure(run, n, zs, truth, repeats, clock):
+    if run not in _warmed:  # imports, JIT compilation (numba in particles), first-call caches
+        run(min(n, 1000), zs[:5], 0)
+        _warmed.add(run)
     times, err = [], None
     for r in range(repeats):
         est, (wall0, cpu0) = run(n, zs, r + 1)

@@ -208,7 +208,9 @@ TEST(SmcMcmcFilter, ReferenceVariantsSampleTheirClosedFormTargets) {
     EXPECT_EQ(filter.proposals(), 1000 + 5 * 4000);
     const Eigen::VectorXd x_star = filter.reference().transpose();
     // x* is chosen by the rule of the variant (§3.3).
-    if (reference == smc::McmcReference::Mean) EXPECT_EQ(x_star, previous_mean);
+    if (reference == smc::McmcReference::Mean) {
+      EXPECT_EQ(x_star, previous_mean);
+    }
     if (reference == smc::McmcReference::Map) {
       Eigen::Index best;
       previous_target.maxCoeff(&best);

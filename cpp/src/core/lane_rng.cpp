@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "vtrack/core/vmath.hpp"
 
@@ -38,20 +39,18 @@ inline void box_muller(std::uint64_t a, std::uint64_t b, double& z0, double& z1)
   z1 = radius * y;
 }
 
-// Box-Muller in single precision from one 64-bit draw: the high half gives the radius, the low
-// half the quarter turn (2 bits) and phi (its top 24 bits), as in box_muller above.
-inline void box_muller(std::uint64_t bits, float& z0, float& z1) noexcept {
-  const auto hi = static_cast<std::uint32_t>(bits >> 32);
-  const auto lo = static_cast<std::uint32_t>(bits);
+// Box-Muller in single precision from two 32-bit draws: `ru` gives the radius, `ra` the quarter
+// turn (its 2 low bits) and phi (its top 24 bits), as in box_muller above.
+inline void box_muller(std::uint32_t ru, std::uint32_t ra, float& z0, float& z1) noexcept {
   // u in (0, 1]: 31 bits (signed int32 -> float is the conversion AVX2 has).
-  const float u = static_cast<float>(static_cast<std::int32_t>(hi >> 1) + 1) * 0x1.0p-31f;
+  const float u = static_cast<float>(static_cast<std::int32_t>(ru >> 1) + 1) * 0x1.0p-31f;
   const float radius = std::sqrt(-2.0f * vmath::log(u));
-  const float phi = (static_cast<float>(static_cast<std::int32_t>(lo >> 8)) * 0x1.0p-24f - 0.5f) *
+  const float phi = (static_cast<float>(static_cast<std::int32_t>(ra >> 8)) * 0x1.0p-24f - 0.5f) *
                     static_cast<float>(0.5 * vmath::kPi);
   float s, c;
   vmath::sincos_reduced(phi, s, c);
-  const bool odd = (lo & 1u) != 0;
-  const bool negate = (lo & 2u) != 0;
+  const bool odd = (ra & 1u) != 0;
+  const bool negate = (ra & 2u) != 0;
   float x = odd ? -s : c;
   float y = odd ? c : s;
   x = negate ? -x : x;
@@ -114,16 +113,21 @@ void LaneRng::fill_normal(double* out, std::size_t n) noexcept {
 }
 
 void LaneRng::fill_normal(float* out, std::size_t n) noexcept {
-  // Two calls of next() per chunk, so the loop below works on 2 kLanes draws (4 kLanes floats)
-  // and fills whole vector registers.
-  alignas(64) std::uint64_t a[2 * L];
+  // One call of next() gives the radii of 2 kLanes pairs (its outputs read as 32-bit halves,
+  // which needs no shuffling), a second their angles: 4 kLanes normals per chunk.
+  alignas(64) std::uint64_t a[L];
+  alignas(64) std::uint64_t b[L];
+  alignas(64) std::uint32_t ra[2 * L];
+  alignas(64) std::uint32_t rb[2 * L];
   alignas(64) float tail[4 * L];
   std::size_t done = 0;
   while (done < n) {
     next(a);
-    next(a + L);
+    next(b);
+    std::memcpy(ra, a, sizeof ra);
+    std::memcpy(rb, b, sizeof rb);
     float* dst = n - done >= 4 * L ? out + done : tail;
-    for (int l = 0; l < 2 * L; ++l) box_muller(a[l], dst[l], dst[l + 2 * L]);
+    for (int k = 0; k < 2 * L; ++k) box_muller(ra[k], rb[k], dst[k], dst[k + 2 * L]);
     const std::size_t take = std::min<std::size_t>(4 * L, n - done);
     if (dst == tail) std::copy(tail, tail + take, out + done);
     done += take;

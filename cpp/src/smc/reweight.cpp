@@ -29,8 +29,8 @@ void WeightUpdate::block(Eigen::Index b, const double* log_w, const double* log_
   const BlockRange r = block_range(b, n_);
   double* t = updated_.data() + r.begin;
   double* e = scaled_.data() + r.begin;
-  const double* lw = log_w + r.begin;
-  const double* ll = log_lik + r.begin;
+  const double* lw = log_w;
+  const double* ll = log_lik;
   const Eigen::Index n = r.size();
   Eigen::Map<Eigen::ArrayXd> tv(t, n);
   Eigen::Map<Eigen::ArrayXd> ev(e, n);
@@ -120,7 +120,10 @@ ReweightResult reweight(Eigen::VectorXd& log_w, Eigen::VectorXd& weights,
   update.begin(log_w.size());
   const Eigen::VectorXd& lw = log_w;
   for_blocks(block_count(log_w.size()), threads,
-             [&](Eigen::Index b) { update.block(b, lw.data(), log_lik.data()); });
+             [&](Eigen::Index b) {
+               const Eigen::Index begin = block_range(b, lw.size()).begin;
+               update.block(b, lw.data() + begin, log_lik.data() + begin);
+             });
   const ReweightResult result = update.finish();
   if (result.updated()) update.commit(log_w, weights, threads);
   return result;

@@ -31,9 +31,9 @@ class LaneRng {
   // n standard normals by Box-Muller: per pair, 52 bits for the radius (|z| <= 8.5) and 52 bits
   // plus 2 for the angle. Pairs land kLanes apart: out[j] and out[j + kLanes] share a radius.
   void fill_normal(double* out, std::size_t n) noexcept;
-  // n standard normals in single precision, about 4x faster: one 64-bit draw per pair, 31 bits
-  // for the radius (so |z| <= 6.55; the tail beyond has probability 5e-10) and 24 bits plus 2 for
-  // the angle, float arithmetic (relative error < 1e-6). For process noise of particle filters,
+  // n standard normals in single precision, about twice as fast: 64 random bits per pair, 31 for
+  // the radius (so |z| <= 6.55; the tail beyond has probability 5e-10) and 24 plus 2 for the
+  // angle, float arithmetic (relative error < 1e-6). For the process noise of particle filters,
   // where this precision is far below the Monte Carlo error.
   void fill_normal(float* out, std::size_t n) noexcept;
 

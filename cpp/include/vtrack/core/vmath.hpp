@@ -11,9 +11,10 @@
 // std::sqrt is an exact IEEE operation and vectorises as it is, because vtrack compiles with
 // -fno-math-errno.
 //
-// References: the polynomial and rational approximations are fdlibm's (Sun Microsystems, 1993:
-// e_log.c, k_sin.c, k_cos.c) and Cephes' (S. L. Moshier, 1984-1992: atan.c); the range reductions
-// are the textbook ones (Cody & Waite 1980; Muller, "Elementary Functions", 2016).
+// References: the polynomials are fdlibm's (Sun Microsystems, 1993: e_log.c, k_sin.c, k_cos.c)
+// and Cephes' (S. L. Moshier, 1984-1992: logf.c, sinf.c, cosf.c), atan's is its Taylor series;
+// the range reductions are the textbook ones (Cody & Waite 1980; Muller, "Elementary
+// Functions", 2016).
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -115,33 +116,43 @@ inline void sincos_reduced(double x, double& s, double& c) noexcept {
 
 // atan2(y, x) in [-pi, pi] for finite y, x; atan2(0, 0) = 0.
 inline double atan2(double y, double x) noexcept {
-  // Cephes atan.c: with t = min/max in [0, 1], t > 0.66 is mapped to (t - 1)/(t + 1) + pi/4, then
-  // atan(t) = t + t z P(z)/Q(z), z = t^2 (relative error < 1e-16 on |t| <= 0.66).
-  constexpr double P0 = -8.750608600031904122785e-01, P1 = -1.615753718733365076637e+01,
-                   P2 = -7.500855792314704667340e+01, P3 = -1.228866684490136173410e+02,
-                   P4 = -6.485021904942025371773e+01;
-  constexpr double Q0 = 2.485846490142306297962e+01, Q1 = 1.650270098316988542046e+02,
-                   Q2 = 4.328810604912902668951e+02, Q3 = 4.853903996359136964868e+02,
-                   Q4 = 1.945506571482613964425e+02;
-  constexpr double kPio4 = 7.85398163397448309616e-01;
-  constexpr double kMoreBits = 6.123233995736765886130e-17;  // pi/2 - double(pi/2)
+  // One division only (the divider is the bottleneck of vectorised code): with num <= den the
+  // octant's |y|, |x|, t = num / den lies in [0, 1]; above tan(pi/12) it is mapped to
+  // tan(atan(t) - pi/6) = (sqrt(3) num - den) / (sqrt(3) den + num), so the quotient, formed
+  // once, lies in [-tan(pi/12), tan(pi/12)], where atan's Taylor series to t^25 is exact to
+  // 2^-53 (the next term is below 0.268^27 / 27 = 1.5e-17).
+  constexpr double kSqrt3 = 1.73205080756887729353;
+  constexpr double kTanPi12 = 0.26794919243112270647;
+  constexpr double kPi6 = 0.52359877559829887308;
+  constexpr double kPi2 = 1.57079632679489661923;
   const double ax = x < 0.0 ? -x : x;
   const double ay = y < 0.0 ? -y : y;
   const bool swap = ay > ax;
   const double num = swap ? ax : ay;
   const double den = swap ? ay : ax;
-  const bool high = num > 0.66 * den;
-  const double tn = high ? num - den : num;
-  const double td_raw = high ? num + den : den;
+  const bool high = num > kTanPi12 * den;
+  const double tn = high ? kSqrt3 * num - den : num;
+  const double td_raw = high ? kSqrt3 * den + num : den;
   const double td = td_raw == 0.0 ? 1.0 : td_raw;  // atan2(0, 0) = 0
   const double t = tn / td;
   const double z = t * t;
-  const double p = (((P0 * z + P1) * z + P2) * z + P3) * z + P4;
-  const double q = ((((z + Q0) * z + Q1) * z + Q2) * z + Q3) * z + Q4;
-  double a = t + t * z * (p / q);
-  a = high ? a + (kPio4 + 0.5 * kMoreBits) : a;
-  a = swap ? (2.0 * kPio4 + kMoreBits) - a : a;   // atan(1/t) = pi/2 - atan(t)
-  a = x < 0.0 ? (4.0 * kPio4 + 2.0 * kMoreBits) - a : a;
+  // sum_{k=1..12} (-1)^k z^k / (2k + 1), Horner.
+  double p = 1.0 / 25.0;
+  p = p * z - 1.0 / 23.0;
+  p = p * z + 1.0 / 21.0;
+  p = p * z - 1.0 / 19.0;
+  p = p * z + 1.0 / 17.0;
+  p = p * z - 1.0 / 15.0;
+  p = p * z + 1.0 / 13.0;
+  p = p * z - 1.0 / 11.0;
+  p = p * z + 1.0 / 9.0;
+  p = p * z - 1.0 / 7.0;
+  p = p * z + 1.0 / 5.0;
+  p = p * z - 1.0 / 3.0;
+  double a = t + t * z * p;
+  a = high ? a + kPi6 : a;
+  a = swap ? kPi2 - a : a;      // atan(1/t) = pi/2 - atan(t)
+  a = x < 0.0 ? kPi - a : a;
   return y < 0.0 ? -a : a;
 }
 

@@ -34,8 +34,8 @@ class WeightUpdate {
   // n particles; with d > 0 the blocks also sum their weighted states (for mean()).
   void begin(Eigen::Index n, Eigen::Index d = 0);
   // For the particles of block b: t_i = log_w_i + log_lik_i, exp(t_i - max_b t) and the block's
-  // sums; with `states` (the block's n_b x d rows) also sum_i exp(t_i - max_b t) x_i. Reads
-  // log_w and log_lik at the block's indices only; thread-safe across blocks.
+  // sums; with `states` (the block's n_b x d rows) also sum_i exp(t_i - max_b t) x_i. log_w and
+  // log_lik point at the block's first particle; thread-safe across blocks.
   void block(Eigen::Index b, const double* log_w, const double* log_lik,
              const models::StatesView<double>* states = nullptr);
   // Combines the blocks in order. InvalidArgument on a NaN or +inf t_i. Writes nothing.

@@ -230,19 +230,28 @@ class Sir {
     }
   }
   bool keep_noise() const { return params_.resample_move_steps > 0; }
-  // log-likelihoods (and proposal corrections) of block b's new states, and its weight sums.
+  // log-likelihoods (and proposal corrections) of block b's new states, and its weight sums. The
+  // log-likelihoods go to loglik_ when the moves (or a whole-array model) need them there, else
+  // to a block-sized buffer.
   void weigh_block(Eigen::Index b, const Eigen::VectorXd& z) {
     const BlockRange r = block_range(b, set_.size());
     const models::StatesView<double> x(next_.middleRows(r.begin, r.size()));
-    if constexpr (!kWholeObservation) observation_.log_likelihood(x, z, loglik_.data() + r.begin);
+    Eigen::VectorXd local;
+    double* ll = loglik_.data() + r.begin;
+    if (!keep_loglik()) {
+      local.resize(r.size());
+      ll = local.data();
+    }
+    if constexpr (!kWholeObservation) observation_.log_likelihood(x, z, ll);
     if constexpr (!kBootstrap) {
       Eigen::VectorXd correction(r.size());  // log p(x|x_prev) - log q(x|x_prev, z), eq. 5
       proposal_.log_weight(models::StatesView<double>(set_.states().middleRows(r.begin, r.size())),
                            x, z, correction.data());
-      loglik_.segment(r.begin, r.size()) += correction;
+      Eigen::Map<Eigen::VectorXd>(ll, r.size()) += correction;
     }
-    update_.block(b, set_.log_weights().data(), loglik_.data(), &x);
+    update_.block(b, set_.log_weights().data() + r.begin, ll, &x);
   }
+  bool keep_loglik() const { return kWholeObservation || keep_noise(); }
 
   // Propagation (and, with z, the update and the decision to resample) into fresh buffers,
   // committed only when nothing threw.
@@ -253,7 +262,7 @@ class Sir {
     next_.resize(n, motion_.dim());
     if (keep_noise()) eps_.resize(n, noise_dim());
     if (z) {
-      loglik_.resize(n);
+      if (keep_loglik()) loglik_.resize(n);
       update_.begin(n, motion_.dim());
     }
     const int threads = params_.threads;
