@@ -243,7 +243,7 @@ std::vector<double> sigma_list(const py::handle& sigma) {
   return std::vector<double>(a.data(), a.data() + a.size());
 }
 
-void bind_models_smc(py::module_& m) {
+void bind_motion_models(py::module_& m) {
   py::class_<LinearTransition>(m, "LinearTransition", R"doc(
 x_k = F x_{k-1} + S eps, eps ~ N(0, I): the form every built-in motion model of the particle
 filters takes (S S^T = Q; S has fewer columns than rows when Q is singular).
@@ -317,6 +317,9 @@ components, X_k first. sigma is one value or one per component of X.
         return "SecondOrderAutoRegressive(dims=" + std::to_string(s.dim() / 2) + ")";
       });
 
+}
+
+void bind_range_bearing(py::module_& m) {
   const models::RangeBearingParams rb;
   py::class_<models::RangeBearingObservation>(m, "RangeBearingObservation", R"doc(
 Range and bearing of a point target from a sensor: z = [|p - s|, atan2(p_y - s_y, p_x - s_x)] plus
@@ -383,11 +386,7 @@ void common_estimates(Cls& cls) {
           "steps", [](const Wrapper& w) { return w.visit([](const auto& f) { return f.steps(); }); });
 }
 
-}  // namespace
-
-void bind_smc(py::module_& m) {
-  bind_models_smc(m);
-
+void bind_particle_filter(py::module_& m) {
   const smc::SirParams sir;
   py::class_<ParticleFilter> pf(m, "ParticleFilter", R"doc(
 Sequential importance resampling particle filter (particle-filters-human-vehicle §1.2,
@@ -467,7 +466,9 @@ If every particle has likelihood zero the update is skipped (weights kept, log_e
       .def_property_readonly(
           "dim", [](const ParticleFilter& w) { return w.visit([](const auto& f) { return static_cast<int>(f.particles().dim()); }); });
   common_estimates<decltype(pf), ParticleFilter>(pf);
+}
 
+void bind_mcmc_filter(py::module_& m) {
   const smc::McmcParams mc;
   py::class_<McmcParticleFilter> mcmc(m, "MCMCParticleFilter", R"doc(
 MCMC particle filter (particle-filters-human-vehicle §1.3, §3.3): each step(z) runs one
@@ -511,6 +512,15 @@ chain step, on one particle).
           [](const McmcParticleFilter& w) { return w.visit([](const auto& f) { return f.proposals(); }); },
           "Proposals made by the last step's chain: burn_in + thinning * n_particles.");
   common_estimates<decltype(mcmc), McmcParticleFilter>(mcmc);
+}
+
+}  // namespace
+
+void bind_smc(py::module_& m) {
+  bind_motion_models(m);
+  bind_range_bearing(m);
+  bind_particle_filter(m);
+  bind_mcmc_filter(m);
 }
 
 }  // namespace vtrack::bindings

@@ -68,8 +68,8 @@ void multinomial(const Eigen::Ref<const Eigen::VectorXd>& weights, double total,
 // costs a branch misprediction per particle): particle i marks the first output slot it owns,
 // upto_{i-1}, and a running maximum over the slots fills each run with its particle. A particle
 // with no copy marks the same slot as the next one, which overwrites it; so does a zero weight,
-// which leaves C_i unchanged and receives no point. About 5x faster than the loop per particle
-// (1.5 ns per particle), with the same ancestors.
+// which leaves C_i unchanged and receives no point. The same ancestors as that loop, about 3x
+// faster (N = 1e5 uniform weights: 3.5 vs 11 ns per particle).
 void systematic(const Eigen::Ref<const Eigen::VectorXd>& weights, double total, std::size_t count,
                 double offset, std::int64_t* ancestors) {
   const Eigen::Index n = weights.size();

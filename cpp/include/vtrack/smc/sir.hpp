@@ -338,75 +338,104 @@ class Sir {
     if (params_.resample_move_steps > 0) move(z);
   }
 
+  // One block's proposals: eps', x' = propagate(x^anc, eps'), log p(z|x') and the uniforms of the
+  // accept test, as block-local buffers (the fused path) or as views into whole arrays (a
+  // whole-array observation model evaluates all proposals at once).
+  using BlockMatrix = Eigen::Map<Eigen::MatrixXd, 0, Eigen::OuterStride<>>;
+  struct Proposals {
+    BlockMatrix eps, x;
+    Eigen::Map<Eigen::VectorXd> ll, u;
+  };
+  static Proposals rows_of(Eigen::MatrixXd& eps, Eigen::MatrixXd& x, Eigen::VectorXd& ll,
+                           Eigen::VectorXd& u, Eigen::Index begin, Eigen::Index n) {
+    return {BlockMatrix(eps.data() + begin, n, eps.cols(), Eigen::OuterStride<>(eps.rows())),
+            BlockMatrix(x.data() + begin, n, x.cols(), Eigen::OuterStride<>(x.rows())),
+            Eigen::Map<Eigen::VectorXd>(ll.data() + begin, n),
+            Eigen::Map<Eigen::VectorXd>(u.data() + begin, n)};
+  }
+
   // resample_move_steps Metropolis-Hastings moves of every particle in noise space (see top).
   void move(const Eigen::VectorXd& z) {
     const Eigen::Index n = set_.size();
     const Eigen::Index blocks = block_count(n);
-    const int nr = noise_dim();
-    prop_eps_.resize(n, nr);
-    prop_x_.resize(n, motion_.dim());
-    prop_ll_.resize(n);
-    uniform_.resize(n);
     std::vector<Eigen::Index> accepted(static_cast<std::size_t>(blocks), 0);
     for (int m = 0; m < params_.resample_move_steps; ++m) {
-      for_blocks(blocks, params_.threads, [&](Eigen::Index b) { propose_block(b, z); });
-      if constexpr (kWholeObservation) observation_.log_likelihood_all(prop_x_, z, prop_ll_);
-      for_blocks(blocks, params_.threads, [&](Eigen::Index b) {
-        accepted[static_cast<std::size_t>(b)] += accept_block(b);
-      });
+      if constexpr (!kWholeObservation) {
+        // Fused: a block proposes, evaluates and accepts while its data are in cache.
+        for_blocks(blocks, params_.threads, [&](Eigen::Index b) {
+          const Eigen::Index size = block_range(b, n).size();
+          Eigen::MatrixXd eps(size, noise_dim()), x(size, motion_.dim());
+          Eigen::VectorXd ll(size), u(size);
+          Proposals p = rows_of(eps, x, ll, u, 0, size);
+          propose(b, z, p);
+          accepted[static_cast<std::size_t>(b)] += accept(b, p);
+        });
+      } else {
+        prop_eps_.resize(n, noise_dim());
+        prop_x_.resize(n, motion_.dim());
+        prop_ll_.resize(n);
+        uniform_.resize(n);
+        auto proposals = [&](Eigen::Index b) {
+          const BlockRange r = block_range(b, n);
+          return rows_of(prop_eps_, prop_x_, prop_ll_, uniform_, r.begin, r.size());
+        };
+        for_blocks(blocks, params_.threads, [&](Eigen::Index b) { propose(b, z, proposals(b)); });
+        observation_.log_likelihood_all(prop_x_, z, prop_ll_);
+        for_blocks(blocks, params_.threads, [&](Eigen::Index b) {
+          accepted[static_cast<std::size_t>(b)] += accept(b, proposals(b));
+        });
+      }
     }
     Eigen::Index total = 0;
     for (Eigen::Index a : accepted) total += a;
     acceptance_rate_ = static_cast<double>(total) /
                        (static_cast<double>(n) * params_.resample_move_steps);
   }
-  void propose_block(Eigen::Index b, const Eigen::VectorXd& z) {
+  void propose(Eigen::Index b, const Eigen::VectorXd& z, Proposals p) {
     const BlockRange r = block_range(b, set_.size());
     const int nr = noise_dim();
-    draw_noise(b, r.size(), nr, prop_eps_.data() + r.begin, prop_eps_.rows());
+    draw_noise(b, r.size(), nr, p.eps.data(), p.eps.outerStride());
     for (int k = 0; k < nr; ++k) {
-      double* p = &prop_eps_(r.begin, k);
+      double* q = p.eps.data() + k * p.eps.outerStride();
       const double* e = &eps_(r.begin, k);
-      for (Eigen::Index i = 0; i < r.size(); ++i) p[i] = e[i] + params_.move_scale * p[i];
+      for (Eigen::Index i = 0; i < r.size(); ++i) q[i] = e[i] + params_.move_scale * q[i];
     }
-    streams_[b].fill_uniform(uniform_.data() + r.begin, r.size());
+    streams_[b].fill_uniform(p.u.data(), r.size());
     if constexpr (!kWholeMotion) {
-      const models::StatesView<double> prev(prev_.middleRows(r.begin, r.size()));
-      motion_.propagate(prev, models::StatesView<double>(prop_eps_.middleRows(r.begin, r.size())),
-                        prop_x_.middleRows(r.begin, r.size()));
+      motion_.propagate(models::StatesView<double>(prev_.middleRows(r.begin, r.size())),
+                        models::StatesView<double>(p.eps), p.x);
     }
     if constexpr (!kWholeObservation) {
-      observation_.log_likelihood(
-          models::StatesView<double>(prop_x_.middleRows(r.begin, r.size())), z,
-          prop_ll_.data() + r.begin);
+      observation_.log_likelihood(models::StatesView<double>(p.x), z, p.ll.data());
     }
   }
   // Accepts or rejects block b's proposals; returns the number accepted.
-  Eigen::Index accept_block(Eigen::Index b) {
+  Eigen::Index accept(Eigen::Index b, const Proposals& p) {
     const BlockRange r = block_range(b, set_.size());
     const Eigen::Index n = r.size();
-    const auto e_old = eps_.middleRows(r.begin, n);
-    const auto e_new = prop_eps_.middleRows(r.begin, n);
     // log alpha = log p(z|x') - log p(z|x) + log N(eps') - log N(eps); accept if log u < log alpha.
-    Eigen::ArrayXd log_alpha = prop_ll_.segment(r.begin, n) - loglik_.segment(r.begin, n);
-    log_alpha -= 0.5 * (e_new.rowwise().squaredNorm() - e_old.rowwise().squaredNorm()).array();
-    Eigen::Array<bool, Eigen::Dynamic, 1> take(n);
+    Eigen::ArrayXd log_alpha = p.ll - loglik_.segment(r.begin, n);
+    log_alpha -= 0.5 * (p.eps.rowwise().squaredNorm() -
+                        eps_.middleRows(r.begin, n).rowwise().squaredNorm()).array();
+    std::vector<unsigned char> take(static_cast<std::size_t>(n));
     Eigen::Index count = 0;
     for (Eigen::Index i = 0; i < n; ++i) {
       // 1 - u lies in (0, 1], so its log is finite; a NaN log alpha rejects.
-      take[i] = core::vmath::log(1.0 - uniform_[r.begin + i]) < log_alpha[i];
-      count += take[i] ? 1 : 0;
+      take[static_cast<std::size_t>(i)] = core::vmath::log(1.0 - p.u[i]) < log_alpha[i];
+      count += take[static_cast<std::size_t>(i)];
     }
+    // Accepted rows replace the current ones, column by column (contiguous: the loop vectorises).
     auto blend = [&](auto& dst, const auto& src) {
       for (Eigen::Index c = 0; c < dst.cols(); ++c) {
-        for (Eigen::Index i = 0; i < n; ++i) {
-          dst(r.begin + i, c) = take[i] ? src(r.begin + i, c) : dst(r.begin + i, c);
-        }
+        double* to = dst.data() + c * dst.rows() + r.begin;
+        const double* from = src.data() + c * src.outerStride();
+        const unsigned char* t = take.data();
+        for (Eigen::Index i = 0; i < n; ++i) to[i] = t[i] ? from[i] : to[i];
       }
     };
-    blend(eps_, prop_eps_);
-    blend(set_.states(), prop_x_);
-    blend(loglik_, prop_ll_);
+    blend(eps_, p.eps);
+    blend(set_.states(), p.x);
+    blend(loglik_, p.ll);
     return count;
   }
 
