@@ -15,7 +15,7 @@ VIDEO_SHA256 := 45cddc9490be69345cbdab64ca583be65987e864ca408038e648db99e10516cf
 DEMO_OUT ?= demo-output
 # PETS09-S2L1 ground truth (MOT15), shipped in data/ (data/pets09-s2l1/SOURCE.md).
 PETS_GT ?= data/pets09-s2l1/gt.txt
-APT_PACKAGES := build-essential libeigen3-dev libopencv-dev libgtest-dev
+APT_PACKAGES := build-essential libeigen3-dev libopencv-dev libgtest-dev libyaml-cpp-dev
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 SOURCES := CMakeLists.txt pyproject.toml $(shell find cpp bindings python -type f -not -name '*.pyc' 2>/dev/null)
 
@@ -46,6 +46,7 @@ bench: $(VENV)/.vtrack-installed $(VENV)/.bench-deps $(VIDEO)
 	$(PY) benchmarks/pets09.py
 	$(PY) benchmarks/detections.py
 	$(PY) benchmarks/track_video.py
+	$(PY) benchmarks/vehicle_geometry.py
 
 build: $(VENV)/.vtrack-installed
 

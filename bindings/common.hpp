@@ -73,5 +73,6 @@ void bind_glmb(py::module_& m);
 void bind_multi_bernoulli(py::module_& m);
 void bind_apps(py::module_& m);
 void bind_detections(py::module_& m);
+void bind_vehicles(py::module_& m);
 
 }  // namespace vtrack::bindings

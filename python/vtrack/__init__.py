@@ -15,7 +15,10 @@ labelled RFS tracker (delta-GLMB with Gaussian or particle track densities, scen
 sampler ``gibbs_assignments``; with ``particles=`` and a ``DepthLikelihood`` it is the RGB-D
 switching-observation tracker (``step(detections, depth=...)``, Kinect conversion
 ``kinect_raw_to_depth``, synthetic scenes in ``vtrack.rgbd``); ``ospa``, ``ospa2`` and ``gospa``
-score it.
+score it. Vehicle dimension estimation (particle-filters-human-vehicle §3) starts with the road
+camera (``Camera``, ``read_camera_file``), the ray observation of a vehicle's silhouette
+(``observe_vehicle``) and the class mixture prior (``VehicleModelPrior``, Table 1 in
+``table1_vehicle_models``); ``vtrack.synthetic_road`` renders road scenes with exact ground truth.
 
 >>> import numpy as np, vtrack
 >>> rng = vtrack.Rng(seed=1)
@@ -34,6 +37,7 @@ from ._core import (
     BernoulliComponent,
     bgr_to_rgi,
     BoxTracker,
+    Camera,
     close_square,
     DepthLikelihood,
     effective_sample_size,
@@ -58,22 +62,28 @@ from ._core import (
     MultiBernoulliTracker,
     murty,
     normalize_log_weights,
+    observe_vehicle,
     ospa,
     ospa2,
     OspaResult,
     probe_video,
+    read_camera_file,
     read_detections,
+    read_vehicle_models_file,
     resample,
     Rng,
+    table1_vehicle_models,
     Track,
     track_detections,
     track_video,
+    VehicleModelPrior,
+    VehicleObservation,
     VideoInfo,
     __version__,
 )
 
 # Pure-Python modules built on the compiled ones above.
-from . import mot, rgbd, scenarios, synthetic  # noqa: E402
+from . import mot, rgbd, scenarios, synthetic, synthetic_road  # noqa: E402
 
 RESAMPLING_METHODS = ("multinomial", "stratified", "systematic", "residual")
 
@@ -81,6 +91,7 @@ __all__ = [
     "BernoulliComponent",
     "bgr_to_rgi",
     "BoxTracker",
+    "Camera",
     "close_square",
     "DepthLikelihood",
     "effective_sample_size",
@@ -106,20 +117,27 @@ __all__ = [
     "MultiBernoulliTracker",
     "murty",
     "normalize_log_weights",
+    "observe_vehicle",
     "ospa",
     "ospa2",
     "OspaResult",
     "probe_video",
+    "read_camera_file",
     "read_detections",
+    "read_vehicle_models_file",
     "resample",
     "RESAMPLING_METHODS",
     "rgbd",
     "Rng",
     "scenarios",
     "synthetic",
+    "synthetic_road",
+    "table1_vehicle_models",
     "Track",
     "track_detections",
     "track_video",
+    "VehicleModelPrior",
+    "VehicleObservation",
     "VideoInfo",
     "__version__",
 ]
