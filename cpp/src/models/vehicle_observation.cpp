@@ -230,32 +230,33 @@ VehicleModelPrior::VehicleModelPrior(VehiclePriorParams params) : params_(std::m
 }
 
 Eigen::MatrixXd VehicleModelPrior::class_log_densities(const Eigen::Ref<const Eigen::Matrix3Xd>& whl) const {
+  // Row by row over the hypotheses, so every operation runs over n contiguous values (vectorised).
   Eigen::MatrixXd out(means_.cols(), whl.cols());
   for (Eigen::Index m = 0; m < means_.cols(); ++m) {
-    const Eigen::Array3Xd z = (whl.colwise() - means_.col(m)).array().colwise() * inv_sigma_.col(m).array();
-    out.row(m) = (log_constant_(m) - 0.5 * z.square().colwise().sum()).matrix();
+    Eigen::ArrayXd q = Eigen::ArrayXd::Zero(whl.cols());
+    for (int k = 0; k < 3; ++k) {
+      q += ((whl.row(k).array().transpose() - means_(k, m)) * inv_sigma_(k, m)).square();
+    }
+    out.row(m) = (log_constant_(m) - 0.5 * q).matrix().transpose();
   }
   return out;
 }
 
 namespace {
-// Column-wise log-sum-exp of a matrix (rows = classes).
+// Column-wise log-sum-exp of a matrix (rows = models), vectorised over the columns. Columns whose
+// maximum is not finite (never for finite hypotheses) keep that maximum.
 Eigen::RowVectorXd column_log_sum_exp(const Eigen::MatrixXd& d) {
-  const Eigen::RowVectorXd top = d.colwise().maxCoeff();
-  Eigen::RowVectorXd out(d.cols());
-  for (Eigen::Index j = 0; j < d.cols(); ++j) {
-    out(j) = std::isfinite(top(j)) ? top(j) + std::log((d.col(j).array() - top(j)).exp().sum()) : top(j);
-  }
-  return out;
+  const Eigen::Array<double, 1, Eigen::Dynamic> top = d.colwise().maxCoeff().array();
+  const Eigen::Array<double, 1, Eigen::Dynamic> sum = (d.array().rowwise() - top).exp().colwise().sum();
+  return (top.isFinite()).select(top + sum.log(), top).matrix();
 }
 }  // namespace
 
 Eigen::VectorXd VehicleModelPrior::log_density(const Eigen::Ref<const Eigen::Matrix3Xd>& whl) const {
   Eigen::VectorXd out = column_log_sum_exp(class_log_densities(whl)).transpose();
-  for (Eigen::Index j = 0; j < whl.cols(); ++j) {
-    if ((whl.col(j).array() < params_.min_size.array()).any()) out(j) = -kInf;
-  }
-  return out;
+  // Below the minimum size in any dimension: outside the prior's support.
+  const auto below = ((whl.array().colwise() - params_.min_size.array()) < 0.0).colwise().any();
+  return below.transpose().select(-kInf, out.array()).matrix();
 }
 
 Eigen::MatrixXd VehicleModelPrior::class_log_posteriors(const Eigen::Ref<const Eigen::Matrix3Xd>& whl) const {
