@@ -46,6 +46,7 @@ bench: $(VENV)/.vtrack-installed $(VENV)/.bench-deps $(VIDEO)
 	$(PY) benchmarks/pets09.py
 	$(PY) benchmarks/detections.py
 	$(PY) benchmarks/track_video.py
+	$(PY) benchmarks/vehicle_geometry.py
 
 build: $(VENV)/.vtrack-installed
 

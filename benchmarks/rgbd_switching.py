@@ -206,13 +206,13 @@ def main():
     parser.add_argument("--figure", default="demo-output/rgbd_switching.png")
     parser.add_argument("--figure-seed", type=int, default=0)
     args = parser.parse_args()
-    defaults = vtrack.models.DepthLikelihood(2, 2, 1.0)
+    defaults = vtrack.models.DepthLikelihood.default_params()
     depth_params = {
-        "tempering": args.tempering if args.tempering is not None else defaults.tempering,
+        "tempering": args.tempering if args.tempering is not None else defaults["tempering"],
         "sigma_target": (args.sigma_target if args.sigma_target is not None
-                         else defaults.sigma_target),
+                         else defaults["sigma_target"]),
         "sigma_background": (args.sigma_background if args.sigma_background is not None
-                             else defaults.sigma_background)}
+                             else defaults["sigma_background"])}
     methods = dict(METHODS, **(ABLATIONS if args.ablations else {}))
     if args.switching_only:
         methods = {k: v for k, v in methods.items() if v["switching"]}

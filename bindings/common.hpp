@@ -74,5 +74,6 @@ void bind_multi_bernoulli(py::module_& m);
 void bind_apps(py::module_& m);
 void bind_detections(py::module_& m);
 void bind_tracks(py::module_& m);
+void bind_vehicles(py::module_& m);
 
 }  // namespace vtrack::bindings

@@ -28,4 +28,5 @@ PYBIND11_MODULE(_core, m) {
   vtrack::bindings::bind_multi_bernoulli(m);
   vtrack::bindings::bind_apps(m);
   vtrack::bindings::bind_detections(m);
+  vtrack::bindings::bind_vehicles(m);
 }

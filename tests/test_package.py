@@ -118,7 +118,7 @@ def test_every_component_has_the_same_parameter_surface():
 
 
 SUBMODULES = ("assign", "detectors", "image", "io", "metrics", "models", "pipelines", "smc",
-              "trackers", "evaluate", "synthetic", "scenarios", "rgbd")
+              "trackers", "vehicles", "evaluate", "synthetic", "scenarios", "rgbd", "synthetic_road")
 
 
 def test_public_api_is_exported_and_documented():

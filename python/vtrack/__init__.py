@@ -17,7 +17,9 @@ The main entry points are here; the rest lives in submodules that mirror the C++
 ``vtrack.assign``             linear assignment, Murty, Gibbs assignments
 ``vtrack.metrics``            OSPA, OSPA(2), GOSPA (CLEAR-MOT/IDF1/HOTA: ``vtrack.evaluate``)
 ``vtrack.io``                 MOTChallenge files, config files, video probing
-``vtrack.synthetic``, ``vtrack.scenarios``, ``vtrack.rgbd``: scenes with exact ground truth
+``vtrack.vehicles``           road camera, vehicle ray observation, class prior
+``vtrack.synthetic``, ``vtrack.scenarios``, ``vtrack.rgbd``, ``vtrack.synthetic_road``: scenes
+with exact ground truth
 ============================  =========================================================
 
 Every component takes keyword parameters with the papers' defaults -- the names config files and
@@ -51,7 +53,7 @@ from ._core import (
     __version__,
 )
 from . import assign, detectors, image, io, metrics, models, pipelines, smc, trackers  # noqa: E402
-from . import rgbd, scenarios, synthetic  # noqa: E402
+from . import rgbd, scenarios, synthetic, synthetic_road, vehicles  # noqa: E402
 from .io import load_config  # noqa: E402
 from .pipelines import track_detections, track_video  # noqa: E402
 
@@ -82,7 +84,9 @@ __all__ = [
     "scenarios",
     "smc",
     "synthetic",
+    "synthetic_road",
     "track_detections",
     "track_video",
     "trackers",
+    "vehicles",
 ]
