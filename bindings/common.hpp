@@ -67,6 +67,7 @@ apps::ParameterValue parameter_from_python(const std::string& name, const py::ha
 
 void bind_core(py::module_& m);
 void bind_image(py::module_& m);
+void bind_colour(py::module_& m);
 void bind_models(py::module_& m);
 void bind_filters(py::module_& m);
 void bind_glmb(py::module_& m);

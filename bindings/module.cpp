@@ -16,6 +16,7 @@ PYBIND11_MODULE(_core, m) {
   vtrack::apps::quiet_video_backend_logs();
   vtrack::bindings::bind_core(m);
   vtrack::bindings::bind_image(m);
+  vtrack::bindings::bind_colour(m);
   vtrack::bindings::bind_models(m);
   vtrack::bindings::bind_filters(m);
   vtrack::bindings::bind_glmb(m);

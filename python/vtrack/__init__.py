@@ -9,13 +9,16 @@ This release holds the SMC core the trackers are built from, the KDE background 
 multi-Bernoulli track-before-detect tracker that consumes y (H x W float32, near 1 =
 background): ``vtrack.MultiBernoulliTracker((width, height), seed=1)`` and ``.step(y)`` per
 frame; ``vtrack.mot`` writes MOTChallenge files, ``python -m vtrack.evaluate`` scores them,
-``vtrack.synthetic`` makes scenes with exact ground truth. ``vtrack.GlmbTracker`` is the
-labelled RFS tracker (delta-GLMB with Gaussian or particle track densities, scenarios in
-``vtrack.scenarios``), built on ``linear_assignment``, Murty's k-best ``murty`` and the Gibbs
-sampler ``gibbs_assignments``; with ``particles=`` and a ``DepthLikelihood`` it is the RGB-D
-switching-observation tracker (``step(detections, depth=...)``, Kinect conversion
-``kinect_raw_to_depth``, synthetic scenes in ``vtrack.rgbd``); ``ospa``, ``ospa2`` and ``gospa``
-score it.
+``vtrack.synthetic`` makes scenes with exact ground truth. Colour histograms (part-based paper
+eqs. 9-11): ``hsv_histogram``, ``bhattacharyya_coefficient``, ``colour_log_likelihood`` and
+``ColourModel``, which scores many boxes against a template in one call;
+``vtrack.synthetic_occlusion`` makes a partial-occlusion scene with exact part boxes.
+``vtrack.GlmbTracker`` is the labelled RFS tracker (delta-GLMB with Gaussian or particle track
+densities, scenarios in ``vtrack.scenarios``), built on ``linear_assignment``, Murty's k-best
+``murty`` and the Gibbs sampler ``gibbs_assignments``; with ``particles=`` and a
+``DepthLikelihood`` it is the RGB-D switching-observation tracker (``step(detections,
+depth=...)``, Kinect conversion ``kinect_raw_to_depth``, synthetic scenes in ``vtrack.rgbd``);
+``ospa``, ``ospa2`` and ``gospa`` score it.
 
 >>> import numpy as np, vtrack
 >>> rng = vtrack.Rng(seed=1)
@@ -32,9 +35,13 @@ NumPy arrays go in and out without copies where the layout allows; wrong dtypes 
 
 from ._core import (
     BernoulliComponent,
+    bhattacharyya_coefficient,
+    bhattacharyya_distance,
     bgr_to_rgi,
     BoxTracker,
     close_square,
+    ColourModel,
+    colour_log_likelihood,
     DepthLikelihood,
     effective_sample_size,
     foreground_mask,
@@ -45,6 +52,8 @@ from ._core import (
     gospa,
     GospaResult,
     HogPeopleDetector,
+    hsv_bins,
+    hsv_histogram,
     IntegralImage,
     InvalidArgument,
     IoError,
@@ -73,15 +82,19 @@ from ._core import (
 )
 
 # Pure-Python modules built on the compiled ones above.
-from . import mot, rgbd, scenarios, synthetic  # noqa: E402
+from . import mot, rgbd, scenarios, synthetic, synthetic_occlusion  # noqa: E402
 
 RESAMPLING_METHODS = ("multinomial", "stratified", "systematic", "residual")
 
 __all__ = [
     "BernoulliComponent",
+    "bhattacharyya_coefficient",
+    "bhattacharyya_distance",
     "bgr_to_rgi",
     "BoxTracker",
     "close_square",
+    "ColourModel",
+    "colour_log_likelihood",
     "DepthLikelihood",
     "effective_sample_size",
     "foreground_mask",
@@ -92,6 +105,8 @@ __all__ = [
     "gospa",
     "GospaResult",
     "HogPeopleDetector",
+    "hsv_bins",
+    "hsv_histogram",
     "IntegralImage",
     "InvalidArgument",
     "IoError",
@@ -117,6 +132,7 @@ __all__ = [
     "Rng",
     "scenarios",
     "synthetic",
+    "synthetic_occlusion",
     "Track",
     "track_detections",
     "track_video",
