@@ -11,14 +11,24 @@ and N(0, 0.15 h), sizes N(0, 0.05 w / h): right after a jump, or a lost track). 
 
 * direct: each box's pixels, one increment per pixel (four partial histograms);
 * incremental: boxes in Morton order of their corners, each box's counts updated from the
-  previous box's by the pixels that differ (a direct count when that is not cheaper);
-* integral: one integral histogram (16 x 4 x 4 summed-area tables) over the region, 4 lookups per
-  bin per box;
+  previous box's by the pixels that differ (a direct count when that is not cheaper); the
+  default ('auto') for unweighted histograms;
 * kernel: direct with Nummiaro's Epanechnikov weights (the only method that supports them);
 * NumPy: cv2.cvtColor of the region once, then one np.bincount per box over its slice (the
   histogram code of benchmarks/follow.py's NumPy particle filter), the Bhattacharyya
   coefficient as one matrix product;
 * NumPy per-box cvtColor + calcHist: the naive way, converting every box.
+
+Measured (this script, 2 shared cores under load from other jobs, CPU time; microseconds per
+call, direct / incremental / integral histogram): 20x50, N = 30, tight 61 / 44 / 159, wide 98 /
+75 / 214; 40x100, N = 90, tight 402 / 144 / 566, wide 441 / 262 / 2101; 60x150, N = 210, tight
+1135 / 250 / 2049; 100x250, N = 30, tight 560 / 229 / 5924, wide 975 / 730 / 58589; 100x250, N =
+210, tight 4471 / 464 / 5964, wide 3616 / 2427 / 89462. Incremental counting beat direct counting
+in all 24 cases (1.3x to 10x; most with tight clouds and large boxes), so ColourModel uses it by
+default. The integral histogram (one summed-area table per bin over the region, then 4 lookups
+per bin per box) never won: building it costs (region pixels) x 256 adds, more than counting all
+N <= 210 boxes directly when the region is not much larger than a box, and much more for wide
+clouds; it was removed from vtrack after this measurement (commit 2754c4f has it).
 
 Times are medians of repeated calls in CPU time of the calling thread (time.thread_time: robust
 when other jobs share the cores; everything here runs on that one thread: cv2.setNumThreads(1),
@@ -124,8 +134,8 @@ def main() -> None:
     cv2.setNumThreads(1)
     frame = read_frame(args.video, args.frame)
     rng = np.random.default_rng(0)
-    header = ["boxes", "N", "spread", "direct us", "incremental us", "integral us", "kernel us",
-              "NumPy us", "calcHist us", "NumPy / direct", "NumPy / incremental"]
+    header = ["boxes", "N", "spread", "direct us", "incremental us", "kernel us", "NumPy us",
+              "calcHist us", "NumPy / direct", "NumPy / incremental"]
     rows = []
     for w, h in SIZES:
         box = (CENTRE[0] - w / 2, CENTRE[1] - h / 2, w, h)
@@ -137,20 +147,19 @@ def main() -> None:
             for spread in ("tight", "wide"):
                 boxes = particle_boxes(rng, n, w, h, spread)
                 ref = model.coefficients(frame, boxes)
-                for method in ("incremental", "integral"):
-                    assert np.allclose(model.coefficients(frame, boxes, method=method), ref, atol=1e-5)
+                assert np.allclose(model.coefficients(frame, boxes, method="direct"), ref, atol=1e-5)
                 assert np.allclose(numpy_scorer.coefficients(frame, boxes), ref, atol=1e-5)
                 t = {m: median_seconds(lambda m=m: model.coefficients(frame, boxes, method=m),
                                        repeats=args.repeats, clock=time.thread_time)
-                     for m in ("direct", "incremental", "integral")}
+                     for m in ("direct", "incremental")}
                 t["kernel"] = median_seconds(lambda: kernel.coefficients(frame, boxes), repeats=args.repeats, clock=time.thread_time)
                 t["numpy"] = median_seconds(lambda: numpy_scorer.coefficients(frame, boxes),
                                             repeats=args.repeats, clock=time.thread_time)
                 t["calchist"] = median_seconds(lambda: calchist_coefficients(frame, boxes, q),
                                                repeats=max(3, args.repeats // 3), clock=time.thread_time)
                 rows.append([f"{w}x{h}", n, spread,
-                             *(f"{1e6 * t[m]:.0f}" for m in ("direct", "incremental", "integral", "kernel",
-                                                             "numpy", "calchist")),
+                             *(f"{1e6 * t[m]:.0f}" for m in ("direct", "incremental", "kernel", "numpy",
+                                                             "calchist")),
                              f"{t['numpy'] / t['direct']:.1f}", f"{t['numpy'] / t['incremental']:.1f}"])
     print(f"Scoring N boxes against a template on frame {args.frame} of {Path(args.video).name} "
           "(median CPU microseconds per call, one thread)")

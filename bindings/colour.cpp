@@ -77,8 +77,8 @@ double coefficient(const py::handle& p, const py::handle& q) {
 HistogramMethod histogram_method(const std::string& name) {
   if (name == "direct") return HistogramMethod::direct;
   if (name == "incremental") return HistogramMethod::incremental;
-  if (name == "integral") return HistogramMethod::integral;
-  throw py::value_error("method must be 'direct', 'incremental' or 'integral', got '" + name + "'");
+  if (name == "auto") return HistogramMethod::automatic;
+  throw py::value_error("method must be 'auto', 'direct' or 'incremental', got '" + name + "'");
 }
 
 py::array_t<double> coefficients(const ColourModel& model, const py::handle& frame,
@@ -139,14 +139,15 @@ released while scoring.
       .def_property_readonly("bins", [](const ColourModel& c) { return bins_tuple(c.params()); })
       .def_property_readonly("kernel", [](const ColourModel& c) { return c.params().kernel; })
       .def("coefficients", &coefficients, py::arg("frame"), py::arg("boxes"), py::kw_only(),
-           py::arg("method") = "direct",
+           py::arg("method") = "auto",
            "Bhattacharyya coefficients (eq. 10) of the (N, 4) boxes against the template, (N,) "
-           "float64. `method` ('direct', 'incremental', 'integral') only changes how the counts "
-           "are computed; the latter two need kernel=False.")
+           "float64. `method` only changes how the counts are computed: 'direct' counts each "
+           "box's pixels, 'incremental' (unweighted only) updates a neighbouring box's counts by "
+           "the pixels that differ, 'auto' is incremental unless kernel=True.")
       .def(
           "log_likelihood",
           [](const ColourModel& model, const py::handle& frame, const py::handle& boxes, double sigma) {
-            auto rho = coefficients(model, frame, boxes, "direct");
+            auto rho = coefficients(model, frame, boxes, "auto");
             py::array_t<double> out(rho.size());
             image::colour_log_likelihood(rho.data(), static_cast<std::size_t>(rho.size()), sigma,
                                          out.mutable_data());

@@ -102,7 +102,7 @@ def test_colour_log_likelihood_is_equation_11():
         vtrack.colour_log_likelihood(rho, sigma=0.0)
 
 
-@pytest.mark.parametrize("method", ["direct", "incremental", "integral"])
+@pytest.mark.parametrize("method", ["auto", "direct", "incremental"])
 def test_colour_model_scores_match_numpy(method):
     frame = frame_of(5, 96, 128)
     box = (40.3, 20.6, 24.0, 50.0)
@@ -134,6 +134,8 @@ def test_kernel_model_and_from_histogram():
     assert model.coefficients(frame, boxes)[0] == pytest.approx(1.0)
     with pytest.raises(ValueError, match="direct"):
         model.coefficients(frame, boxes, method="incremental")
+    np.testing.assert_array_equal(model.coefficients(frame, boxes, method="direct"),
+                                  model.coefficients(frame, boxes))
     same = vtrack.ColourModel.from_histogram(model.reference * 7.0, kernel=True)
     np.testing.assert_allclose(same.reference, model.reference)
 

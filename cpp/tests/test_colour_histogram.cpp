@@ -253,7 +253,7 @@ TEST(ColourModel, EveryMethodMatchesBruteForce) {
     }
     const std::size_t n = boxes.size() / 4;
     HsvBinImage bins(p);
-    for (const auto method : {HistogramMethod::direct, HistogramMethod::incremental, HistogramMethod::integral}) {
+    for (const auto method : {HistogramMethod::automatic, HistogramMethod::direct, HistogramMethod::incremental}) {
       std::vector<double> rho(n, -1.0);
       model.coefficients(frame, boxes.data(), n, 4, rho.data(), bins, method);
       for (std::size_t i = 0; i < n; ++i) {

@@ -32,9 +32,11 @@
 // Speed. A filter scores many boxes per frame against one template. The frame is converted and
 // quantised once per frame, over a region of interest that holds every box (HsvBinImage: one
 // cvtColor and one table lookup per pixel, 16-bit bin indices); each box's histogram then costs
-// its own pixels only, never a colour conversion. ColourModel::coefficients scores N boxes in
-// one call; HistogramMethod says how each histogram is counted (measured in
-// benchmarks/colour_histogram.py).
+// its own pixels only, never a colour conversion, and usually less: ColourModel::coefficients
+// scores N boxes in one call and, unweighted, derives each box's counts from a neighbouring box's
+// (HistogramMethod::incremental). An integral histogram over the region (one summed-area table
+// per bin) was measured too and dropped: with m = 256 bins its construction costs more than
+// counting every box directly (benchmarks/colour_histogram.py's docstring has the figures).
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -128,16 +130,16 @@ double colour_log_likelihood(double rho, double sigma);
 // Elementwise over n coefficients; sigma > 0 (InvalidArgument otherwise).
 void colour_log_likelihood(const double* rho, std::size_t n, double sigma, double* out);
 
-// How ColourModel::coefficients counts the histograms of many boxes.
+// How ColourModel::coefficients counts the histograms of many boxes (benchmarks/colour_histogram.py
+// measures them). Every method gives the same coefficients.
 enum class HistogramMethod {
+  // incremental for unweighted histograms, direct for kernel-weighted ones.
+  automatic,
   // Each box's pixels, one increment (or kernel weight) per pixel.
   direct,
-  // One integral histogram (bins() summed-area tables) over the region, then 4 lookups per bin
-  // per box. Unweighted only.
-  integral,
   // Boxes in Morton order of their corners; each box's counts are the previous box's minus the
   // pixels it no longer covers plus those it newly covers (up to 4 rectangles each), or a direct
-  // count when that is cheaper. Unweighted only.
+  // count when that is cheaper. Particles overlap a lot, so few pixels change. Unweighted only.
   incremental,
 };
 
@@ -158,15 +160,15 @@ class ColourModel {
   // Bhattacharyya coefficients rho[p(box_i), q] (eq. 10) of n boxes, `boxes` holding n rows
   // (x, y, w, h) with `stride` doubles between rows (4 for an N x 4 array). The boxes, clipped to
   // the frame, must lie inside bins.roi(); bins must use this model's params. A box without
-  // pixels scores 0. `method` must be direct when params().kernel.
+  // pixels scores 0. `method` must not be incremental when params().kernel.
   void coefficients(const HsvBinImage& bins, const double* boxes, std::size_t n,
                     std::size_t stride, double* rho,
-                    HistogramMethod method = HistogramMethod::direct) const;
+                    HistogramMethod method = HistogramMethod::automatic) const;
   // The same on a frame: quantises the smallest region holding every box into `workspace`
   // (one colour conversion), then scores.
   void coefficients(const cv::Mat& bgr, const double* boxes, std::size_t n, std::size_t stride,
                     double* rho, HsvBinImage& workspace,
-                    HistogramMethod method = HistogramMethod::direct) const;
+                    HistogramMethod method = HistogramMethod::automatic) const;
 
  private:
   ColourHistogramParams params_;
