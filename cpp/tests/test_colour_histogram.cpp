@@ -202,6 +202,8 @@ TEST(ColourHistogram, PixelRectRoundsBothEdges) {
   EXPECT_EQ(pixel_rect(5, 5, -3, 4).width, 0);
   EXPECT_EQ(pixel_rect(std::nan(""), 0, 4, 4).width, 0);
   EXPECT_EQ(pixel_rect(1e300, 0, 4, 4).width, 0);
+  // Edges are pinned to +-2^29, so even the widest box's width fits an int.
+  EXPECT_EQ(pixel_rect(-1e300, 0, 2e300, 4).width, 2 * 536870912);
 }
 
 TEST(Bhattacharyya, ClosedForms) {

@@ -32,9 +32,10 @@ Rect intersect(const Rect& a, const Rect& b) {
 }
 
 // A box coordinate rounded to the pixel grid: floor(v + 0.5), with non-finite values and values
-// beyond +-2^30 pinned so the int conversion is defined (such boxes are far outside any frame).
+// beyond +-2^29 pinned so the int conversion and the difference of two such values are defined
+// (such boxes are far outside any frame).
 int round_px(double v) {
-  constexpr double kLimit = 1073741824.0;
+  constexpr double kLimit = 536870912.0;
   if (std::isnan(v)) return -static_cast<int>(kLimit);
   return static_cast<int>(std::clamp(std::floor(v + 0.5), -kLimit, kLimit));
 }
