@@ -147,20 +147,22 @@ def main() -> None:
             for spread in ("tight", "wide"):
                 boxes = particle_boxes(rng, n, w, h, spread)
                 ref = model.coefficients(frame, boxes)
-                assert np.allclose(model.coefficients(frame, boxes, method="direct"), ref, atol=1e-5)
+                direct = model.coefficients(frame, boxes, method="direct")
+                assert np.allclose(direct, ref, atol=1e-5)
                 assert np.allclose(numpy_scorer.coefficients(frame, boxes), ref, atol=1e-5)
-                t = {m: median_seconds(lambda m=m: model.coefficients(frame, boxes, method=m),
-                                       repeats=args.repeats, clock=time.thread_time)
-                     for m in ("direct", "incremental")}
-                t["kernel"] = median_seconds(lambda: kernel.coefficients(frame, boxes), repeats=args.repeats, clock=time.thread_time)
-                t["numpy"] = median_seconds(lambda: numpy_scorer.coefficients(frame, boxes),
-                                            repeats=args.repeats, clock=time.thread_time)
-                t["calchist"] = median_seconds(lambda: calchist_coefficients(frame, boxes, q),
-                                               repeats=max(3, args.repeats // 3), clock=time.thread_time)
-                rows.append([f"{w}x{h}", n, spread,
-                             *(f"{1e6 * t[m]:.0f}" for m in ("direct", "incremental", "kernel", "numpy",
-                                                             "calchist")),
-                             f"{t['numpy'] / t['direct']:.1f}", f"{t['numpy'] / t['incremental']:.1f}"])
+                calls = {
+                    "direct": lambda: model.coefficients(frame, boxes, method="direct"),
+                    "incremental": lambda: model.coefficients(frame, boxes, method="incremental"),
+                    "kernel": lambda: kernel.coefficients(frame, boxes),
+                    "numpy": lambda: numpy_scorer.coefficients(frame, boxes),
+                    "calchist": lambda: calchist_coefficients(frame, boxes, q),
+                }
+                t = {name: median_seconds(call, clock=time.thread_time,
+                                          repeats=args.repeats if name != "calchist" else 3)
+                     for name, call in calls.items()}
+                rows.append([f"{w}x{h}", n, spread, *(f"{1e6 * t[m]:.0f}" for m in calls),
+                             f"{t['numpy'] / t['direct']:.1f}",
+                             f"{t['numpy'] / t['incremental']:.1f}"])
     print(f"Scoring N boxes against a template on frame {args.frame} of {Path(args.video).name} "
           "(median CPU microseconds per call, one thread)")
     print()

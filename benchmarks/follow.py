@@ -21,6 +21,9 @@ with confidence 1 and its box lies inside the image (at most 2 px outside any bo
   throughout, cut to at most CLEAN_LENGTH (80) frames from its start, kept if at least
   MIN_LENGTH long.
 
+Occluded segments may hold occluded frames that are not events (a full occlusion, a short
+overlap) in their PRE or POST frames; every frame with fraction >= OCCLUDED counts as occluded.
+
 Protocol (OTB one-pass): each tracker is initialised on the GT box of the segment's first frame
 and never re-initialised; frames are decoded once into memory, so timing excludes decoding; the
 first frame is not scored. A tracker that reports ok = False scores that frame as lost.
@@ -33,31 +36,29 @@ Metrics, per segment, then averaged over segments (each segment counts once):
 * failure rate: the fraction of frames with IoU = 0 (the box does not touch the target) or no
   box;
 * the same three over the occluded frames only (fraction >= OCCLUDED) and over the recovery
-  frames (the POST frames after each event), on the occluded segments.
+  frames (the POST frames after each event, less those that are occluded), on the occluded
+  segments;
 * ms/frame: the median over all scored frames of the time of one update() call, as the calling
   thread's CPU time (robust when other jobs share the cores) and as wall time, with OpenCV
   (cv2.setNumThreads(1)) and NumPy (OMP/OpenBLAS/MKL_NUM_THREADS=1) on one thread.
 
-Occluded segments may hold occluded frames that are not events (a full occlusion, a short
-overlap) in their PRE or POST frames; every frame with fraction >= OCCLUDED counts as occluded.
-
-Peers. OpenCV's CSRT and KCF (opencv-contrib) and MIL with their default parameters; KCF also
-with detect_thresh 0.1 (its default 0.5 makes it declare the target lost within ~8 frames on most
+Peers. OpenCV's CSRT and KCF (opencv-contrib) and MIL with their default parameters; KCF also with
+detect_thresh 0.1 (its default 0.5 makes it declare the target lost within ~8 frames on most
 segments -- its peak response on walking people falls below 0.5 -- after which it never moves
-again: clean-segment AUC 0.05 at 0.5, 0.25 at 0.3, 0.35 at 0.2, 0.50 at 0.1; the row shows KCF
-at its best of those). And the paper's conventional colour-
-histogram particle filter (part-based-graphical-model-pf.txt sections 2-3.2, Nummiaro et al.)
-written here in vectorised NumPy (NumpyColourPF): state (cx, cy, h, w) with the previous state
-for the second-order AR dynamics of eq. 13, SIR with selective resampling when N_eff (eq. 7) <=
-0.5 N (systematic), the weighted-mean estimate of eq. 8, the 16 x 4 x 4 HSV histogram of the box
-(OpenCV HSV_FULL, binned as vtrack.hsv_bins), the Bhattacharyya coefficient (eq. 10) and the
-likelihood of eq. 11 with sigma a parameter; the template is the histogram of the init box, never
-updated. Per frame it converts only the region holding every particle's box, once, and counts
-each particle's box with np.bincount over its slice of the region's bin indices. The
-particle filters run at several seeds; tables give the mean over seeds and the spread (min-max).
-vtrack's colour and part-based trackers join as rows of trackers() (a name -> factory(seed)
-mapping; a tracker has OpenCV's init(frame, box) / update(frame) -> (ok, box)) and of
-speed_trackers() (factory(n_particles, seed)) for the table of time against N.
+again: clean-segment AUC 0.05 at 0.5, 0.25 at 0.3, 0.35 at 0.2, 0.50 at 0.1; the row shows KCF at
+its best of those). And the paper's conventional colour-histogram particle filter (part-based-
+graphical-model-pf.txt sections 2-3.2, Nummiaro et al.) written here in vectorised NumPy
+(NumpyColourPF): state (cx, cy, h, w) with the previous state for the second-order AR dynamics of
+eq. 13, SIR with selective resampling when N_eff (eq. 7) <= 0.5 N (systematic), the weighted-mean
+estimate of eq. 8, the 16 x 4 x 4 HSV histogram of the box (OpenCV HSV_FULL, binned as
+vtrack.hsv_bins), the Bhattacharyya coefficient (eq. 10) and the likelihood of eq. 11 with sigma a
+parameter; the template is the histogram of the init box, never updated. Per frame it converts only
+the region holding every particle's box, once, and counts each particle's box with np.bincount over
+its slice of the region's bin indices. The particle filters run at several seeds; tables give the
+mean over seeds and the spread (min-max). vtrack's colour and part-based trackers join as rows of
+trackers() (a name -> factory(seed) mapping; a tracker has OpenCV's init(frame, box) /
+update(frame) -> (ok, box)) and of speed_trackers() (factory(n_particles, seed)) for the table of
+time against N.
 
 The NumPy filter's noise U of eq. 13 is N(0, diag(2, 2, 0.2, 0.1)^2) px on (cx, cy, h, w): the
 paper gives no value. Measured on these segments (N = 30, sigma = 0.2, seeds 0-2; success AUC on
@@ -233,8 +234,9 @@ def find_segments(gt: np.ndarray) -> List[Segment]:
                     j += 1
                 # The latest start PRE..PRE_MAX frames before the event on a clean frame, with no
                 # occluded frame between it and the event.
-                start = next((st for st in range(a - PRE, a - PRE_MAX - 1, -1)
-                              if st >= 0 and frac[st] < CLEAN and frac[st:a].max() < OCCLUDED), None)
+                starts = [st for st in range(a - PRE, a - PRE_MAX - 1, -1)
+                          if st >= 0 and frac[st] < CLEAN and frac[st:a].max() < OCCLUDED]
+                start = starts[0] if starts else None
                 if start is not None and end - start >= MIN_LENGTH:
                     recovery = np.zeros(end - start, bool)
                     for a2, b2 in evs[i:j]:
@@ -299,7 +301,8 @@ def iou(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 
 def centre_error(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    d = np.hypot(a[:, 0] + a[:, 2] / 2 - b[:, 0] - b[:, 2] / 2, a[:, 1] + a[:, 3] / 2 - b[:, 1] - b[:, 3] / 2)
+    d = np.hypot(a[:, 0] + a[:, 2] / 2 - b[:, 0] - b[:, 2] / 2,
+                 a[:, 1] + a[:, 3] / 2 - b[:, 1] - b[:, 3] / 2)
     return np.nan_to_num(d, nan=np.inf)
 
 
@@ -332,7 +335,8 @@ class NumpyColourPF:
     @staticmethod
     def _luts(bins):
         c = np.arange(256)
-        return (c * bins[0] // 256 * bins[1] * bins[2], c * bins[1] // 256 * bins[2], c * bins[2] // 256)
+        return (c * bins[0] // 256 * bins[1] * bins[2], c * bins[1] // 256 * bins[2],
+                c * bins[2] // 256)
 
     def _bin_image(self, frame, x0, y0, x1, y1):
         hsv = cv2.cvtColor(frame[y0:y1, x0:x1], cv2.COLOR_BGR2HSV_FULL)
@@ -387,14 +391,15 @@ class NumpyColourPF:
         new[:, 2:] = np.maximum(new[:, 2:], 2.0)
         self.x_prev, self.x = self.x, new
         rho = np.sqrt(self._histograms(frame, self.x)) @ self.sqrt_q                      # eq. 10
-        log_l = -np.log(np.sqrt(2 * np.pi) * self.sigma) - (1 - rho) / (2 * self.sigma ** 2)  # eq. 11
+        log_l = (-np.log(np.sqrt(2 * np.pi) * self.sigma)                                 # eq. 11
+                 - (1 - rho) / (2 * self.sigma ** 2))
         self.log_w = self.log_w + log_l                                                  # eq. 5
         self.log_w -= self.log_w.max()
         w = np.exp(self.log_w)
         w /= w.sum()                                                                     # eq. 6
         est = w @ self.x                                                                 # eq. 8
         if 1.0 / np.sum(w ** 2) <= self.ess_threshold * self.n:                          # eq. 7
-            u = (self.rng.random() + np.arange(self.n)) / self.n                         # systematic
+            u = (self.rng.random() + np.arange(self.n)) / self.n  # systematic resampling
             idx = np.minimum(np.searchsorted(np.cumsum(w), u), self.n - 1)
             self.x, self.x_prev = self.x[idx], self.x_prev[idx]
             self.log_w = np.full(self.n, -np.log(self.n))
@@ -527,7 +532,8 @@ def main() -> None:
     parser.add_argument("--gt", default=default_gt())
     parser.add_argument("--seeds", type=int, nargs="+", default=[0, 1, 2, 3, 4])
     parser.add_argument("--particles", type=int, default=30)
-    parser.add_argument("--trackers", nargs="*", help="only the rows whose name contains one of these")
+    parser.add_argument("--trackers", nargs="*",
+                        help="only the rows whose name contains one of these")
     parser.add_argument("--segments-only", action="store_true", help="list the segments and stop")
     parser.add_argument("--speed-particles", type=int, nargs="*", default=[30, 90, 210],
                         help="particle counts of the time table (none: skip it)")
@@ -555,8 +561,9 @@ def main() -> None:
         rows_occ.append([name, *(cell(per_seed, ("occluded", "occluded"), i) for i in range(3)),
                          *(cell(per_seed, ("occluded", "recovery"), i) for i in range(3))])
     n_occ = sum(s.kind == "occluded" for s in segments)
-    print(f"Whole segments ({n_occ} occluded, {len(segments) - n_occ} clean); particle filters: mean "
-          f"over seeds {args.seeds} (min-max); ms/frame: median CPU / wall time of update(), one thread")
+    print(f"Whole segments ({n_occ} occluded, {len(segments) - n_occ} clean); particle filters: "
+          f"mean over seeds {args.seeds} (min-max); ms/frame: median CPU / wall time of update(), "
+          "one thread")
     print()
     print_table(["tracker", "occluded: AUC", "prec@20", "failure", "clean: AUC", "prec@20",
                  "failure", "ms/frame CPU / wall"], rows_all)

@@ -15,7 +15,8 @@ using image::HistogramMethod;
 
 ColourHistogramParams histogram_params(const py::handle& bins, bool kernel) {
   if (!py::isinstance<py::sequence>(bins) || py::isinstance<py::str>(bins) || py::len(bins) != 3) {
-    throw py::value_error("bins must be a sequence of 3 ints (H, S, V), got " + std::string(py::repr(bins)));
+    throw py::value_error("bins must be a sequence of 3 ints (H, S, V), got " +
+                          std::string(py::repr(bins)));
   }
   int n[3];
   const auto seq = py::reinterpret_borrow<py::sequence>(bins);
@@ -31,7 +32,9 @@ ColourHistogramParams histogram_params(const py::handle& bins, bool kernel) {
   return p;
 }
 
-py::tuple bins_tuple(const ColourHistogramParams& p) { return py::make_tuple(p.bins_h, p.bins_s, p.bins_v); }
+py::tuple bins_tuple(const ColourHistogramParams& p) {
+  return py::make_tuple(p.bins_h, p.bins_s, p.bins_v);
+}
 
 // A (bins_h, bins_s, bins_v) float64 array of the m values of `hist`.
 py::array_t<double> histogram_array(const ColourHistogramParams& p, const double* hist) {
@@ -68,8 +71,8 @@ double coefficient(const py::handle& p, const py::handle& q) {
   const auto a = any_shape(p, "p");
   const auto b = any_shape(q, "q");
   if (a.size() != b.size()) {
-    throw py::value_error("p and q must have the same number of bins, got " + std::to_string(a.size()) +
-                          " and " + std::to_string(b.size()));
+    throw py::value_error("p and q must have the same number of bins, got " +
+                          std::to_string(a.size()) + " and " + std::to_string(b.size()));
   }
   return image::bhattacharyya_coefficient(a.data(), b.data(), static_cast<std::size_t>(a.size()));
 }
@@ -112,15 +115,16 @@ clipped, a box with no pixel scores 0. log_likelihood(frame, boxes, sigma) is eq
 With kernel=True pixels are weighted by Nummiaro et al.'s Epanechnikov profile. The GIL is
 released while scoring.
 )doc")
-      .def(py::init([](const py::handle& frame, const py::handle& box, const py::handle& bins, bool kernel) {
+      .def(py::init([](const py::handle& frame, const py::handle& box, const py::handle& bins,
+                       bool kernel) {
              py::array keep;
              const cv::Mat bgr = bgr_frame(frame, "frame", keep);
              const auto b = box4(box, "box");
              const auto p = histogram_params(bins, kernel);
              return ColourModel::from_box(bgr, b[0], b[1], b[2], b[3], p);
            }),
-           py::arg("frame"), py::arg("box"), py::kw_only(), py::arg("bins") = py::make_tuple(16, 4, 4),
-           py::arg("kernel") = false)
+           py::arg("frame"), py::arg("box"), py::kw_only(),
+           py::arg("bins") = py::make_tuple(16, 4, 4), py::arg("kernel") = false)
       .def_static(
           "from_histogram",
           [](const py::handle& hist, bool kernel) {
@@ -134,7 +138,8 @@ released while scoring.
           "A model whose template is `hist` (a non-negative (bins_h, bins_s, bins_v) array, "
           "normalised here).")
       .def_property_readonly(
-          "reference", [](const ColourModel& c) { return histogram_array(c.params(), c.reference().data()); },
+          "reference",
+          [](const ColourModel& c) { return histogram_array(c.params(), c.reference().data()); },
           "The normalised template histogram q, shape (bins_h, bins_s, bins_v).")
       .def_property_readonly("bins", [](const ColourModel& c) { return bins_tuple(c.params()); })
       .def_property_readonly("kernel", [](const ColourModel& c) { return c.params().kernel; })
@@ -146,14 +151,16 @@ released while scoring.
            "the pixels that differ, 'auto' is incremental unless kernel=True.")
       .def(
           "log_likelihood",
-          [](const ColourModel& model, const py::handle& frame, const py::handle& boxes, double sigma) {
+          [](const ColourModel& model, const py::handle& frame, const py::handle& boxes,
+             double sigma) {
             auto rho = coefficients(model, frame, boxes, "auto");
             py::array_t<double> out(rho.size());
             image::colour_log_likelihood(rho.data(), static_cast<std::size_t>(rho.size()), sigma,
                                          out.mutable_data());
             return out;
           },
-          py::arg("frame"), py::arg("boxes"), py::kw_only(), py::arg("sigma") = image::kDefaultColourSigma,
+          py::arg("frame"), py::arg("boxes"), py::kw_only(),
+          py::arg("sigma") = image::kDefaultColourSigma,
           "Colour log-likelihoods (eq. 11) of the (N, 4) boxes, (N,) float64.")
       .def("__repr__", [](const ColourModel& c) {
         const auto& p = c.params();
@@ -177,7 +184,8 @@ void bind_colour(py::module_& m) {
           py::gil_scoped_release release;
           image.assign(bgr);
           for (int r = 0; r < bgr.rows; ++r) {
-            std::copy(image.row_ptr(r), image.row_ptr(r) + bgr.cols, out.mutable_data() + static_cast<std::size_t>(r) * bgr.cols);
+            std::copy(image.row_ptr(r), image.row_ptr(r) + bgr.cols,
+                      out.mutable_data() + static_cast<std::size_t>(r) * bgr.cols);
           }
         }
         return out;
@@ -217,15 +225,19 @@ void bind_colour(py::module_& m) {
         "histograms of the same size (any shape), each divided by its sum first.");
   m.def(
       "bhattacharyya_distance",
-      [](const py::handle& p, const py::handle& q) { return image::bhattacharyya_distance(coefficient(p, q)); },
-      py::arg("p"), py::arg("q"), "Bhattacharyya distance sqrt(1 - rho) (eq. 9) of two histograms.");
+      [](const py::handle& p, const py::handle& q) {
+        return image::bhattacharyya_distance(coefficient(p, q));
+      },
+      py::arg("p"), py::arg("q"),
+      "Bhattacharyya distance sqrt(1 - rho) (eq. 9) of two histograms.");
   m.def(
       "colour_log_likelihood",
       [](const py::handle& rho, double sigma) -> py::object {
         const auto r = any_shape(rho, "rho");
         if (r.ndim() == 0) return py::float_(image::colour_log_likelihood(*r.data(), sigma));
         py::array_t<double> out(std::vector<py::ssize_t>(r.shape(), r.shape() + r.ndim()));
-        image::colour_log_likelihood(r.data(), static_cast<std::size_t>(r.size()), sigma, out.mutable_data());
+        image::colour_log_likelihood(r.data(), static_cast<std::size_t>(r.size()), sigma,
+                                     out.mutable_data());
         return std::move(out);
       },
       py::arg("rho"), py::kw_only(), py::arg("sigma") = image::kDefaultColourSigma,

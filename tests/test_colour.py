@@ -47,7 +47,8 @@ def numpy_histogram(frame, box, bins=(16, 4, 4), kernel=False):
 
 def test_hsv_bins_of_pure_colours():
     # HSV_FULL hue codes: red 0, yellow 43, green 85, blue 171 -> bins 0, 2, 5, 10 of 16.
-    px = np.array([[[0, 0, 255], [0, 255, 255], [0, 255, 0], [255, 0, 0], [128, 128, 128]]], np.uint8)
+    px = np.array([[[0, 0, 255], [0, 255, 255], [0, 255, 0], [255, 0, 0], [128, 128, 128]]],
+                  np.uint8)
     u = vtrack.hsv_bins(px)
     assert u.dtype == np.uint16 and u.shape == (1, 5)
     np.testing.assert_array_equal(u[0], [(h * 4 + 3) * 4 + 3 for h in (0, 2, 5, 10)] + [2])
@@ -59,6 +60,12 @@ def test_hsv_bins_match_numpy(bins):
     np.testing.assert_array_equal(vtrack.hsv_bins(frame, bins=bins), numpy_bins(frame, bins))
 
 
+def test_hsv_bins_of_a_frame_agree_with_opencv_python():
+    # vtrack computes OpenCV's integer HSV_FULL itself; cv2 (another OpenCV build) must agree.
+    frame = frame_of(9, 300, 401)
+    np.testing.assert_array_equal(vtrack.hsv_bins(frame), numpy_bins(frame, (16, 4, 4)))
+
+
 @pytest.mark.parametrize("kernel", [False, True])
 def test_histograms_match_numpy(kernel):
     frame = frame_of(2)
@@ -67,13 +74,15 @@ def test_histograms_match_numpy(kernel):
         box = (rng.uniform(-15, 70), rng.uniform(-15, 50), rng.uniform(0, 30), rng.uniform(0, 40))
         hist = vtrack.hsv_histogram(frame, box, kernel=kernel)
         assert hist.shape == (16, 4, 4)
-        np.testing.assert_allclose(hist.ravel(), numpy_histogram(frame, box, kernel=kernel), atol=1e-12)
+        np.testing.assert_allclose(hist.ravel(), numpy_histogram(frame, box, kernel=kernel),
+                                   atol=1e-12)
         assert hist.sum() == pytest.approx(1.0) or hist.sum() == 0.0
 
 
 def test_bhattacharyya_closed_forms():
     assert vtrack.bhattacharyya_coefficient([1, 0], [0.5, 0.5]) == pytest.approx(math.sqrt(0.5))
-    assert vtrack.bhattacharyya_coefficient([2, 6, 8], [1, 3, 4]) == pytest.approx(1.0)  # same shape
+    # Histograms of the same shape, whatever their scale.
+    assert vtrack.bhattacharyya_coefficient([2, 6, 8], [1, 3, 4]) == pytest.approx(1.0)
     assert vtrack.bhattacharyya_coefficient([1, 0], [0, 1]) == 0.0
     p, q = np.random.default_rng(4).random((2, 4, 4, 4))
     expected = np.sum(np.sqrt(p / p.sum() * q / q.sum()))
@@ -93,7 +102,8 @@ def test_colour_log_likelihood_is_equation_11():
     rho = np.array([0.0, 0.5, 0.9, 1.0])
     for sigma in (0.2, math.sqrt(0.2)):
         p = np.exp(-(1 - rho) / (2 * sigma ** 2)) / math.sqrt(2 * math.pi * sigma ** 2)
-        np.testing.assert_allclose(vtrack.colour_log_likelihood(rho, sigma=sigma), np.log(p), rtol=1e-12)
+        np.testing.assert_allclose(vtrack.colour_log_likelihood(rho, sigma=sigma), np.log(p),
+                                   rtol=1e-12)
     # The default is the text's sigma^2 = 0.2.
     assert vtrack.colour_log_likelihood(0.7) == pytest.approx(
         vtrack.colour_log_likelihood(0.7, sigma=math.sqrt(0.2)))
@@ -129,7 +139,8 @@ def test_kernel_model_and_from_histogram():
     assert model.bins == (8, 4, 4) and model.kernel
     q = numpy_histogram(frame, box, bins=(8, 4, 4), kernel=True)
     boxes = np.array([box, (33.0, 12.0, 28.0, 61.0), (60.0, 30.0, 20.0, 40.0)])
-    expected = [np.sum(np.sqrt(numpy_histogram(frame, b, bins=(8, 4, 4), kernel=True) * q)) for b in boxes]
+    expected = [np.sum(np.sqrt(numpy_histogram(frame, b, bins=(8, 4, 4), kernel=True) * q))
+                for b in boxes]
     np.testing.assert_allclose(model.coefficients(frame, boxes), expected, atol=1e-9)
     assert model.coefficients(frame, boxes)[0] == pytest.approx(1.0)
     with pytest.raises(ValueError, match="direct"):

@@ -21,7 +21,9 @@ namespace {
 cv::Mat random_frame(Rng& rng, int rows, int cols) {
   // Smooth-ish blocks (so neighbouring pixels share bins, as in real images) plus noise.
   cv::Mat small(rows / 8 + 1, cols / 8 + 1, CV_8UC3);
-  for (int i = 0; i < small.rows * small.cols * 3; ++i) small.data[i] = static_cast<uchar>(rng.below(256));
+  for (int i = 0; i < small.rows * small.cols * 3; ++i) {
+    small.data[i] = static_cast<uchar>(rng.below(256));
+  }
   cv::Mat frame;
   cv::resize(small, frame, cv::Size(cols, rows), 0, 0, cv::INTER_NEAREST);
   for (int i = 0; i < rows * cols * 3; ++i) {
@@ -117,7 +119,8 @@ TEST(ColourHistogram, PureColoursFallInTheirHueBins) {
 }
 
 TEST(ColourHistogram, BinsAgreeWithFloatHsvAwayFromBinEdges) {
-  // Independent of OpenCV: hue in degrees, S = (max - min) / max, V = max, binned in floating point.
+  // Independent of OpenCV: hue in degrees, S = (max - min) / max, V = max, binned in floating
+  // point.
   // OpenCV rounds H and S to integer codes, so a pixel within one code of a bin edge may land in
   // the neighbouring bin; every other pixel must agree exactly.
   Rng rng(5);
@@ -227,7 +230,8 @@ TEST(Bhattacharyya, ClosedForms) {
 TEST(ColourLikelihood, IsEquationElevenInLogs) {
   for (const double sigma : {0.2, std::sqrt(0.2), 1.0}) {
     for (const double rho : {0.0, 0.3, 0.95, 1.0}) {
-      const double p = 1 / std::sqrt(2 * M_PI * sigma * sigma) * std::exp(-(1 - rho) / (2 * sigma * sigma));
+      const double p = 1 / std::sqrt(2 * M_PI * sigma * sigma) *
+                       std::exp(-(1 - rho) / (2 * sigma * sigma));
       EXPECT_NEAR(colour_log_likelihood(rho, sigma), std::log(p), 1e-12);
     }
   }
@@ -250,12 +254,15 @@ TEST(ColourModel, EveryMethodMatchesBruteForce) {
     // scattered ones, some partly or wholly outside the frame, some empty.
     std::vector<double> boxes = random_boxes(rng, 40, frame.cols, frame.rows);
     for (int i = 0; i < 40; ++i) {
-      for (const double v : {12 + 3 * rng.normal(), 9 + 3 * rng.normal(), 20 + rng.normal(), 30 + rng.normal()})
+      for (const double v : {12 + 3 * rng.normal(), 9 + 3 * rng.normal(), 20 + rng.normal(),
+                             30 + rng.normal()}) {
         boxes.push_back(v);
+      }
     }
     const std::size_t n = boxes.size() / 4;
     HsvBinImage bins(p);
-    for (const auto method : {HistogramMethod::automatic, HistogramMethod::direct, HistogramMethod::incremental}) {
+    for (const auto method :
+         {HistogramMethod::automatic, HistogramMethod::direct, HistogramMethod::incremental}) {
       std::vector<double> rho(n, -1.0);
       model.coefficients(frame, boxes.data(), n, 4, rho.data(), bins, method);
       for (std::size_t i = 0; i < n; ++i) {
@@ -287,8 +294,9 @@ TEST(ColourModel, KernelWeightedCoefficientsMatchBruteForce) {
     const auto hist = brute_force_histogram(frame, p, &boxes[4 * i], &total);
     ASSERT_NEAR(rho[i], brute_force_rho(hist, total, model.reference()), 2e-6) << i;
   }
-  EXPECT_THROW(model.coefficients(bins, boxes.data(), 50, 4, rho.data(), HistogramMethod::incremental),
-               InvalidArgument);
+  EXPECT_THROW(
+      model.coefficients(bins, boxes.data(), 50, 4, rho.data(), HistogramMethod::incremental),
+      InvalidArgument);
 }
 
 TEST(ColourModel, StridedBoxesAndSharedBinImage) {
@@ -326,7 +334,8 @@ TEST(ColourModel, BadInput) {
   EXPECT_THROW(validate(ColourHistogramParams{16, 257, 4, false}), InvalidArgument);
   EXPECT_THROW(validate(ColourHistogramParams{256, 256, 2, false}), InvalidArgument);
   EXPECT_THROW(ColourModel(ColourHistogramParams{}, std::vector<double>(10, 1.0)), InvalidArgument);
-  EXPECT_THROW(ColourModel(ColourHistogramParams{}, std::vector<double>(256, 0.0)), InvalidArgument);
+  EXPECT_THROW(ColourModel(ColourHistogramParams{}, std::vector<double>(256, 0.0)),
+               InvalidArgument);
   // A box outside the quantised region (but inside the frame) is refused, not silently clipped.
   const ColourModel model = ColourModel::from_box(frame, 5, 5, 5, 5);
   HsvBinImage bins;
@@ -342,4 +351,33 @@ TEST(ColourModel, BadInput) {
   const double away[] = {100, 100, 5, 5};
   model.coefficients(frame, away, 1, 4, &rho, bins);
   EXPECT_EQ(rho, 0.0);
+}
+
+TEST(ColourHistogram, HsvIsOpenCvsForEveryColour) {
+  // HsvBinImage computes OpenCV's integer HSV_FULL itself: with 256 bins per channel its bin
+  // indices are the H, S, V bytes, which must equal cv::cvtColor's for all 2^24 BGR colours.
+  cv::Mat all(4096, 4096, CV_8UC3);
+  for (int i = 0; i < 4096 * 4096; ++i) {
+    all.data[3 * i] = static_cast<uchar>(i & 255);
+    all.data[3 * i + 1] = static_cast<uchar>((i >> 8) & 255);
+    all.data[3 * i + 2] = static_cast<uchar>(i >> 16);
+  }
+  cv::Mat hsv;
+  cv::cvtColor(all, hsv, cv::COLOR_BGR2HSV_FULL);
+  // (256, 256, 1) bins: u = H * 256 + S, so H and S are checked; V by (1, 1, 256): u = V.
+  for (const ColourHistogramParams p : {ColourHistogramParams{256, 256, 1, false},
+                                        ColourHistogramParams{1, 1, 256, false}}) {
+    HsvBinImage bins(p);
+    bins.assign(all);
+    long long mismatches = 0;
+    for (int r = 0; r < all.rows; ++r) {
+      const std::uint16_t* u = bins.row_ptr(r);
+      const cv::Vec3b* ref = hsv.ptr<cv::Vec3b>(r);
+      for (int c = 0; c < all.cols; ++c) {
+        const int expected = p.bins_v == 256 ? ref[c][2] : ref[c][0] * 256 + ref[c][1];
+        mismatches += u[c] != expected;
+      }
+    }
+    EXPECT_EQ(mismatches, 0) << "bins " << p.bins_h << " x " << p.bins_s << " x " << p.bins_v;
+  }
 }

@@ -205,8 +205,8 @@ def make_occlusion_scene(layout: str = "person", *, width: int = 320, height: in
     centre_row = int(round(cy))
     occluder = (ox, centre_row, occluder_w, height - centre_row) if occlude == "lower" else \
         (ox, 0, occluder_w, centre_row)
-    fraction = np.array([[_rect_overlap(part_boxes[i, p], occluder) / (part_boxes[i, p, 2] * part_boxes[i, p, 3])
-                          for p in range(len(names))] for i in range(n_frames)])
+    fraction = np.array([[_rect_overlap(b, occluder) / (b[2] * b[3]) for b in part_boxes[i]]
+                         for i in range(n_frames)])
 
     rng = np.random.default_rng(seed)
     # Background: textured, low-saturation greens and greys, so the figure's colours stand out.
@@ -216,10 +216,13 @@ def make_occlusion_scene(layout: str = "person", *, width: int = 320, height: in
     # Parts: saturated colours with hues spread around the circle, from a random start; the
     # occluder: a textured brown-grey of its own.
     hue0 = rng.uniform(0, 360)
-    hues = (hue0 + 360 * np.arange(len(names)) / len(names) + rng.uniform(-15, 15, len(names))) % 360
-    part_colours = np.stack([_hsv_colour(h, rng.uniform(0.6, 0.9), rng.uniform(0.55, 0.85)) for h in hues])
+    n = len(names)
+    hues = (hue0 + 360 * np.arange(n) / n + rng.uniform(-15, 15, n)) % 360
+    part_colours = np.stack([_hsv_colour(h, rng.uniform(0.6, 0.9), rng.uniform(0.55, 0.85))
+                             for h in hues])
     occluder_texture = _smooth_noise(rng, occluder[3], occluder[2], 6)
-    occluder_image = _hsv_colour(30.0, 0.3, 0.45)[None, None, :] * (1 + 0.25 * occluder_texture[..., None])
+    occluder_image = (_hsv_colour(30.0, 0.3, 0.45)[None, None, :]
+                      * (1 + 0.25 * occluder_texture[..., None]))
     texture = rng.uniform(-1, 1, (9, 7))  # 9 x 7 cells over the figure: a coarse pattern
     return OcclusionScene(width, height, layout, names, boxes, part_boxes, occluder, fraction, seed,
                           float(noise_std), background, occluder_image, part_colours, texture)

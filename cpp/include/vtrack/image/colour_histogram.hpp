@@ -30,11 +30,11 @@
 // (Nummiaro's f), so it sums to 1.
 //
 // Speed. A filter scores many boxes per frame against one template. The frame is converted and
-// quantised once per frame, over a region of interest that holds every box (HsvBinImage: one
-// cvtColor and one table lookup per pixel, 16-bit bin indices); each box's histogram then costs
-// its own pixels only, never a colour conversion, and usually less: ColourModel::coefficients
-// scores N boxes in one call and, unweighted, derives each box's counts from a neighbouring box's
-// (HistogramMethod::incremental). An integral histogram over the region (one summed-area table
+// quantised once per frame, over a region of interest that holds every box (HsvBinImage: OpenCV's
+// integer HSV_FULL and the binning in one pass, 16-bit bin indices, one thread); each box's
+// histogram then costs its own pixels only, never a colour conversion, and usually less:
+// ColourModel::coefficients scores N boxes in one call and, unweighted, derives each box's counts
+// from a neighbouring box's (HistogramMethod::incremental). An integral histogram over the region (one summed-area table
 // per bin) was measured too and dropped: with m = 256 bins its construction costs more than
 // counting every box directly (benchmarks/colour_histogram.py's docstring has the figures).
 #include <cstddef>
@@ -87,7 +87,9 @@ class HsvBinImage {
   int frame_rows() const { return frame_rows_; }
   int frame_cols() const { return frame_cols_; }
   // Bin index of frame pixel (row, col), which must lie inside roi().
-  std::uint16_t at(int row, int col) const { return index_.at<std::uint16_t>(row - roi_.y, col - roi_.x); }
+  std::uint16_t at(int row, int col) const {
+    return index_.at<std::uint16_t>(row - roi_.y, col - roi_.x);
+  }
   // Pointer to the bin indices of frame row `row` (inside roi()), starting at column roi().x.
   const std::uint16_t* row_ptr(int row) const { return index_.ptr<std::uint16_t>(row - roi_.y); }
 
@@ -96,8 +98,6 @@ class HsvBinImage {
 
  private:
   ColourHistogramParams params_;
-  std::uint16_t lut_h_[256], lut_s_[256], lut_v_[256];  // channel value -> its part of u
-  cv::Mat hsv_;    // scratch: the region in HSV_FULL
   cv::Mat index_;  // bin indices of the region, CV_16UC1
   Rect roi_;
   int frame_rows_ = 0;
