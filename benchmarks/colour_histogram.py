@@ -1,5 +1,5 @@
 """Speed of scoring particle boxes against a colour template (part-based paper eqs. 9-10): the
-three ways vtrack.ColourModel.coefficients can count the boxes' 16 x 4 x 4 HSV histograms, the
+two ways vtrack.ColourModel.coefficients can count the boxes' 16 x 4 x 4 HSV histograms, the
 kernel-weighted count, and NumPy peers, on a real frame of vtest.avi.
 
 Each call scores N boxes around a person-sized box of w x h pixels, as a particle filter does
@@ -19,16 +19,22 @@ and N(0, 0.15 h), sizes N(0, 0.05 w / h): right after a jump, or a lost track). 
   coefficient as one matrix product;
 * NumPy per-box cvtColor + calcHist: the naive way, converting every box.
 
-Measured (this script, 2 shared cores under load from other jobs, CPU time; microseconds per
-call, direct / incremental / integral histogram): 20x50, N = 30, tight 61 / 44 / 159, wide 98 /
-75 / 214; 40x100, N = 90, tight 402 / 144 / 566, wide 441 / 262 / 2101; 60x150, N = 210, tight
-1135 / 250 / 2049; 100x250, N = 30, tight 560 / 229 / 5924, wide 975 / 730 / 58589; 100x250, N =
-210, tight 4471 / 464 / 5964, wide 3616 / 2427 / 89462. Incremental counting beat direct counting
-in all 24 cases (1.3x to 10x; most with tight clouds and large boxes), so ColourModel uses it by
-default. The integral histogram (one summed-area table per bin over the region, then 4 lookups
-per bin per box) never won: building it costs (region pixels) x 256 adds, more than counting all
-N <= 210 boxes directly when the region is not much larger than a box, and much more for wide
-clouds; it was removed from vtrack after this measurement (commit 2754c4f has it).
+Measured (this script, 2 cores shared with other jobs, CPU time, frame 100; microseconds per
+call): direct / incremental / kernel / NumPy / per-box calcHist at 20x50, N = 30, tight: 40 / 21 /
+75 / 263 / 1419; 40x100, N = 90, tight 232 / 63 / 660 / 1318 / 4686, wide 252 / 158 / 716 / 1357 /
+4529; 60x150, N = 210, tight 1087 / 156 / 3167 / 5294 / 21725; 100x250, N = 210, tight 2852 / 326
+/ 11379 / 15513 / 49882, wide 3042 / 1785 / 8675 / 14550 / 44442. NumPy over vtrack: 3.2-9.8x for
+direct counts, 5.5-48x for incremental ones (5.5-9x on wide clouds, 12-48x on tight ones).
+Incremental counting beat direct counting in all 24 cases, so ColourModel uses it by default. The
+kernel-weighted count costs 2-4x the direct one (a double weight per pixel).
+
+An integral histogram over the region (one summed-area table per bin, then 4 lookups per bin per
+box) was measured as a third method in commit 2754c4f (then with cv::cvtColor and scalar sums, so
+all figures were higher): direct / incremental / integral 61 / 44 / 159 at 20x50, N = 30, tight;
+402 / 144 / 566 at 40x100, N = 90, tight, 441 / 262 / 2101 wide; 4471 / 464 / 5964 at 100x250, N
+= 210, tight, 3616 / 2427 / 89462 wide. It never won: building it costs (region pixels) x 256
+adds, more than counting all N <= 210 boxes directly when the region is not much larger than a
+box, and far more for wide clouds; it was removed.
 
 Times are medians of repeated calls in CPU time of the calling thread (time.thread_time: robust
 when other jobs share the cores; everything here runs on that one thread: cv2.setNumThreads(1),
