@@ -350,10 +350,10 @@ void HsvBinImage::assign(const cv::Mat& bgr, const Rect& roi) {
     roi_ = Rect{};
     return;
   }
-  index_.create(roi_.height, roi_.width, CV_16UC1);
+  buffer_.resize(static_cast<std::size_t>(roi_.width) * roi_.height);
   for (int row = 0; row < roi_.height; ++row) {
     quantise_row(bgr.ptr<unsigned char>(roi_.y + row) + 3 * roi_.x, roi_.width, params_,
-                 index_.ptr<std::uint16_t>(row));
+                 buffer_.data() + static_cast<std::size_t>(row) * roi_.width);
   }
 }
 

@@ -34,9 +34,10 @@
 // integer HSV_FULL and the binning in one pass, 16-bit bin indices, one thread); each box's
 // histogram then costs its own pixels only, never a colour conversion, and usually less:
 // ColourModel::coefficients scores N boxes in one call and, unweighted, derives each box's counts
-// from a neighbouring box's (HistogramMethod::incremental). An integral histogram over the region (one summed-area table
-// per bin) was measured too and dropped: with m = 256 bins its construction costs more than
-// counting every box directly (benchmarks/colour_histogram.py's docstring has the figures).
+// from a neighbouring box's (HistogramMethod::incremental). An integral histogram over the region
+// (one summed-area table per bin) was measured too and dropped: with m = 256 bins its
+// construction costs more than counting every box directly (benchmarks/colour_histogram.py's
+// docstring has the figures).
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -54,7 +55,8 @@ struct ColourHistogramParams {
   int bins_s = 4;
   int bins_v = 4;
   // Weight pixels with Nummiaro et al.'s Epanechnikov kernel (above); off = every pixel of the box
-  // counts 1, as the paper's section 3.1 states it.
+  // counts 1. Section 3.1's "color histograms of positional information" may mean this weighting
+  // (its ref. [14] uses it); the filters' benchmarks are to say which tracks better.
   bool kernel = false;
 };
 
@@ -67,7 +69,7 @@ inline int bin_count(const ColourHistogramParams& p) { return p.bins_h * p.bins_
 // Pixel rectangle of a continuous box (x, y, w, h) before clipping (see the file comment).
 Rect pixel_rect(double x, double y, double w, double h);
 
-// The pixels of a frame's region of interest as histogram bin indices (CV_16UC1). Only the bin
+// The pixels of a frame's region of interest as histogram bin indices (16-bit). Only the bin
 // counts of the params matter here (kernel weighting belongs to the histogram). Reused from frame
 // to frame: assign() reallocates only when the region grows.
 class HsvBinImage {
@@ -87,18 +89,19 @@ class HsvBinImage {
   int frame_rows() const { return frame_rows_; }
   int frame_cols() const { return frame_cols_; }
   // Bin index of frame pixel (row, col), which must lie inside roi().
-  std::uint16_t at(int row, int col) const {
-    return index_.at<std::uint16_t>(row - roi_.y, col - roi_.x);
-  }
+  std::uint16_t at(int row, int col) const { return row_ptr(row)[col - roi_.x]; }
   // Pointer to the bin indices of frame row `row` (inside roi()), starting at column roi().x.
-  const std::uint16_t* row_ptr(int row) const { return index_.ptr<std::uint16_t>(row - roi_.y); }
+  const std::uint16_t* row_ptr(int row) const {
+    return buffer_.data() + static_cast<std::size_t>(row - roi_.y) * roi_.width;
+  }
 
   // Clips `rect` to the frame and checks it lies inside roi(); throws InvalidArgument otherwise.
   Rect clip_inside(const Rect& rect) const;
 
  private:
   ColourHistogramParams params_;
-  cv::Mat index_;  // bin indices of the region, CV_16UC1
+  // Bin indices of the region, row-major; grows to the largest region seen, never shrinks.
+  std::vector<std::uint16_t> buffer_;
   Rect roi_;
   int frame_rows_ = 0;
   int frame_cols_ = 0;
@@ -123,8 +126,9 @@ double bhattacharyya_distance(double rho);
 // sigma is the standard deviation of the Gaussian on the distance d = sqrt(1 - rho). The paper's
 // text gives sigma^2 = 0.2 for eq. 11, while its eq. 24 writes the normaliser 1/sqrt(2 pi sigma),
 // which reads as sigma = 0.2; the two readings weight particles very differently
-// (exp(-2.5 d^2) against exp(-12.5 d^2)), so sigma is a parameter (kDefaultColourSigma: the
-// text's sigma^2 = 0.2; benchmarks/follow.py measures both).
+// (exp(-2.5 d^2) against exp(-12.5 d^2)), so sigma is a parameter. kDefaultColourSigma is the
+// text's sigma^2 = 0.2; benchmarks/follow.py measures both readings (sigma = 0.2 tracked better
+// there), and the trackers' parameters choose their own default.
 constexpr double kDefaultColourSigma = 0.44721359549995793;  // sqrt(0.2)
 double colour_log_likelihood(double rho, double sigma);
 // Elementwise over n coefficients; sigma > 0 (InvalidArgument otherwise).
