@@ -47,6 +47,8 @@ bench: $(VENV)/.vtrack-installed $(VENV)/.bench-deps $(VIDEO)
 	$(PY) benchmarks/detections.py
 	$(PY) benchmarks/track_video.py
 	$(PY) benchmarks/vehicle_geometry.py
+	$(PY) benchmarks/color_histogram.py
+	$(PY) benchmarks/follow.py
 
 build: $(VENV)/.vtrack-installed
 
@@ -66,6 +68,9 @@ $(VENV)/.dev-deps: requirements/dev.txt requirements/eval.txt | $(BUILD)/.system
 $(VENV)/.bench-deps: requirements/bench.txt requirements/bench-nodeps.txt $(VENV)/.dev-deps
 	$(PY) -m pip install --quiet -r requirements/bench.txt || echo "some benchmark peers failed to install; their rows will be skipped"
 	$(PY) -m pip install --quiet --no-deps -r requirements/bench-nodeps.txt || echo "sort-track failed to install; the PETS09 baseline will be skipped"
+	$(PY) -m pip install --quiet --no-deps --upgrade --target $(VENV)/opencv-contrib \
+	  "opencv-contrib-python-headless==$$($(PY) -c 'from importlib.metadata import version; print(version("opencv-python-headless"))')" \
+	  || echo "opencv-contrib failed to install; benchmarks/follow.py will skip CSRT and KCF"
 	touch $@
 
 # Build with the persistent build directory (incremental), C++ tests included, then install the

@@ -67,6 +67,7 @@ std::string type_name(const py::handle& value);
 
 void bind_core(py::module_& m);
 void bind_image(py::module_& m);
+void bind_color(py::module_& m);
 void bind_models(py::module_& m);
 void bind_filters(py::module_& m);
 void bind_glmb(py::module_& m);

@@ -22,6 +22,7 @@ PYBIND11_MODULE(_core, m) {
   vtrack::bindings::bind_core(m);
   vtrack::bindings::bind_tracks(m);
   vtrack::bindings::bind_image(m);
+  vtrack::bindings::bind_color(m);
   vtrack::bindings::bind_models(m);
   vtrack::bindings::bind_filters(m);
   vtrack::bindings::bind_glmb(m);

@@ -118,7 +118,8 @@ def test_every_component_has_the_same_parameter_surface():
 
 
 SUBMODULES = ("assign", "detectors", "image", "io", "metrics", "models", "pipelines", "smc",
-              "trackers", "vehicles", "evaluate", "synthetic", "scenarios", "rgbd", "synthetic_road")
+              "trackers", "vehicles", "evaluate", "synthetic", "scenarios", "rgbd", "synthetic_road",
+              "synthetic_occlusion")
 
 
 def test_public_api_is_exported_and_documented():

@@ -10,7 +10,7 @@ The main entry points are here; the rest lives in submodules that mirror the C++
 ============================  =========================================================
 ``vtrack.pipelines``          :func:`track_video`, :func:`track_detections` (also here)
 ``vtrack.trackers``           ``MultiBernoulliTracker``, ``GlmbTracker``, ``BoxTracker``, ``Tracks``
-``vtrack.image``              ``KdeBackground``, morphology, integral images
+``vtrack.image``              ``KdeBackground``, morphology, integral images, color histograms
 ``vtrack.detectors``          ``HogPeopleDetector``
 ``vtrack.models``             motion / observation models, the depth likelihood
 ``vtrack.smc``                random engine, weights, ESS, resampling, Gaussians
@@ -18,8 +18,8 @@ The main entry points are here; the rest lives in submodules that mirror the C++
 ``vtrack.metrics``            OSPA, OSPA(2), GOSPA (CLEAR-MOT/IDF1/HOTA: ``vtrack.evaluate``)
 ``vtrack.io``                 MOTChallenge files, config files, video probing
 ``vtrack.vehicles``           road camera, vehicle ray observation, class prior
-``vtrack.synthetic``, ``vtrack.scenarios``, ``vtrack.rgbd``, ``vtrack.synthetic_road``: scenes
-with exact ground truth
+``vtrack.synthetic``, ``vtrack.scenarios``, ``vtrack.rgbd``, ``vtrack.synthetic_road``,
+``vtrack.synthetic_occlusion``: scenes with exact ground truth
 ============================  =========================================================
 
 Every component takes keyword parameters with the papers' defaults -- the names config files and
@@ -53,7 +53,7 @@ from ._core import (
     __version__,
 )
 from . import assign, detectors, image, io, metrics, models, pipelines, smc, trackers  # noqa: E402
-from . import rgbd, scenarios, synthetic, synthetic_road, vehicles  # noqa: E402
+from . import rgbd, scenarios, synthetic, synthetic_occlusion, synthetic_road, vehicles  # noqa: E402
 from .io import load_config  # noqa: E402
 from .pipelines import track_detections, track_video  # noqa: E402
 
@@ -84,6 +84,7 @@ __all__ = [
     "scenarios",
     "smc",
     "synthetic",
+    "synthetic_occlusion",
     "synthetic_road",
     "track_detections",
     "track_video",
