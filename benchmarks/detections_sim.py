@@ -103,7 +103,8 @@ sequences; HOTA / IDF1 / MOTA / IDSW per level; CPU ms per frame, median):
 (Rows of one run each, the trackers run in separate invocations of the script with the same
 seeds, so the same detections; CPU times measured while other jobs loaded the machine.) On the
 tuning seeds (full sequences) the means are: vtrack defaults 0.591 / 0.653 / 0.376, vtrack tuned
-0.674 / 0.775 / 0.775, norfair 0.652 / 0.765 / 0.762, SS_TUNE SORT 0.549 / 0.626 / 0.582,
+0.674 / 0.775 / 0.775, norfair 0.652 / 0.765 / 0.762, Stone Soup 0.605 / 0.693 / 0.752, SORT
+0.549 / 0.626 / 0.582,
 ByteTrack 0.534 / 0.649 / 0.654, motpy 0.383 / 0.395 / -0.063 (HOTA / IDF1 / MOTA), so the
 held-out ranking is the tuning one.
 
@@ -111,8 +112,8 @@ Issue 14's gap, confirmed: with its defaults the box GLMB is the best tracker at
 and falls behind norfair and Stone Soup's JPDA on the mean: HOTA / IDF1 0.590 / 0.657 against
 0.651 / 0.764 and 0.610 / 0.697 (ahead of SORT, ByteTrack and motpy), with MOTA -0.75 at the hard
 level. Lightly tuned (three parameters, one set for all levels) it has the best mean HOTA and
-IDF1 of all (0.670 / 0.773), so the model, not the filter, is what the defaults get wrong. Its failures, cell by cell (defaults, tuning seeds 1-2, the three sequences summed,
-per seed; a "clutter track" is a track fewer than half of whose boxes overlap a true box at
+IDF1 of all (0.670 / 0.773), so the model, not the filter, is what the defaults get wrong.
+Its failures, cell by cell (defaults, tuning seeds 1-2, the three sequences summed, per seed; a "clutter track" is a track fewer than half of whose boxes overlap a true box at
 IoU >= 0.5):
 
 | level  | HOTA  | DetA / AssA | FP    | FP of clutter tracks | clutter tracks (median life) | FN   | IDSW | track ids / GT ids |
@@ -131,8 +132,8 @@ IoU >= 0.5):
   (TUD-Stadtmitte). Telling the filter the true lambda and p_D in its current units gains
   almost nothing (mean HOTA 0.591 -> 0.607); with the size density it gains 0.065.
 - Bursts: AssA 0.39, 210 track ids for 37 people: tracks die within a burst of 5-15 misses
-  (p_S 0.99 with p_D 0.8: after a few misses the dead hypotheses win) and are re-born with a
-  new id. FN 1218 is the coasting that does not happen.
+  (with p_S 0.99 and p_D 0.8, after two missed frames the hypotheses that end a track weigh
+  about as much as those that keep it: BoxTrackerParams) and are re-born with a new id. FN 1218 is the coasting that does not happen.
 - Hard: besides clutter, p_D 0.6 and 10 % corner noise: with the clutter fixed, FN (1285)
   dominates; the detection scores are what separates the remaining clutter from people.
 
