@@ -104,9 +104,8 @@ sequences; HOTA / IDF1 / MOTA / IDSW per level; CPU ms per frame, median):
 seeds, so the same detections; CPU times measured while other jobs loaded the machine.) On the
 tuning seeds (full sequences) the means are: vtrack defaults 0.591 / 0.653 / 0.376, vtrack tuned
 0.674 / 0.775 / 0.775, norfair 0.652 / 0.765 / 0.762, Stone Soup 0.605 / 0.693 / 0.752, SORT
-0.549 / 0.626 / 0.582,
-ByteTrack 0.534 / 0.649 / 0.654, motpy 0.383 / 0.395 / -0.063 (HOTA / IDF1 / MOTA), so the
-held-out ranking is the tuning one.
+0.549 / 0.626 / 0.582, ByteTrack 0.534 / 0.649 / 0.654, motpy 0.383 / 0.395 / -0.063 (HOTA /
+IDF1 / MOTA), so the held-out ranking is the tuning one.
 
 Issue 14's gap, confirmed: with its defaults the box GLMB is the best tracker at the easy level
 and falls behind norfair and Stone Soup's JPDA on the mean: HOTA / IDF1 0.590 / 0.657 against
