@@ -45,6 +45,7 @@ bench: $(VENV)/.vtrack-installed $(VENV)/.bench-deps $(VIDEO)
 	$(PY) benchmarks/multi_bernoulli.py
 	$(PY) benchmarks/pets09.py
 	$(PY) benchmarks/detections.py
+	$(PY) benchmarks/detections_sim.py
 	$(PY) benchmarks/track_video.py
 	$(PY) benchmarks/vehicle_geometry.py
 	$(PY) benchmarks/color_histogram.py
@@ -67,7 +68,7 @@ $(VENV)/.dev-deps: requirements/dev.txt requirements/eval.txt | $(BUILD)/.system
 
 $(VENV)/.bench-deps: requirements/bench.txt requirements/bench-nodeps.txt $(VENV)/.dev-deps
 	$(PY) -m pip install --quiet -r requirements/bench.txt || echo "some benchmark peers failed to install; their rows will be skipped"
-	$(PY) -m pip install --quiet --no-deps -r requirements/bench-nodeps.txt || echo "sort-track failed to install; the PETS09 baseline will be skipped"
+	$(PY) -m pip install --quiet --no-deps -r requirements/bench-nodeps.txt || echo "a --no-deps benchmark peer failed to install; its rows will be skipped"
 	$(PY) -m pip install --quiet --no-deps --upgrade --target $(VENV)/opencv-contrib \
 	  "opencv-contrib-python-headless==$$($(PY) -c 'from importlib.metadata import version; print(version("opencv-python-headless"))')" \
 	  || echo "opencv-contrib failed to install; benchmarks/follow.py will skip CSRT and KCF"

@@ -119,7 +119,7 @@ def test_every_component_has_the_same_parameter_surface():
 
 SUBMODULES = ("assign", "detectors", "image", "io", "metrics", "models", "pipelines", "smc",
               "trackers", "vehicles", "evaluate", "synthetic", "scenarios", "rgbd", "synthetic_road",
-              "synthetic_occlusion")
+              "synthetic_occlusion", "detsim")
 
 
 def test_public_api_is_exported_and_documented():

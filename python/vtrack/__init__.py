@@ -19,7 +19,8 @@ The main entry points are here; the rest lives in submodules that mirror the C++
 ``vtrack.io``                 MOTChallenge files, config files, video probing
 ``vtrack.vehicles``           road camera, vehicle ray observation, class prior
 ``vtrack.synthetic``, ``vtrack.scenarios``, ``vtrack.rgbd``, ``vtrack.synthetic_road``,
-``vtrack.synthetic_occlusion``: scenes with exact ground truth
+``vtrack.synthetic_occlusion``: scenes with exact ground truth; ``vtrack.detsim``: a simulated
+detector on real trajectories
 ============================  =========================================================
 
 Every component takes keyword parameters with the papers' defaults -- the names config files and
@@ -53,7 +54,7 @@ from ._core import (
     __version__,
 )
 from . import assign, detectors, image, io, metrics, models, pipelines, smc, trackers  # noqa: E402
-from . import rgbd, scenarios, synthetic, synthetic_occlusion, synthetic_road, vehicles  # noqa: E402
+from . import detsim, rgbd, scenarios, synthetic, synthetic_occlusion, synthetic_road, vehicles  # noqa: E402,E501
 from .io import load_config  # noqa: E402
 from .pipelines import track_detections, track_video  # noqa: E402
 
@@ -74,6 +75,7 @@ __all__ = [
     "__version__",
     "assign",
     "detectors",
+    "detsim",
     "image",
     "io",
     "load_config",
