@@ -174,9 +174,9 @@ class NumpyConstantVelocity:
 
 
 def vtrack_sir(n, zs, seed, moves=0, python_obs=False, python_motion=False):
-    motion = NumpyConstantVelocity() if python_motion else vtrack.ConstantVelocity(
+    motion = NumpyConstantVelocity() if python_motion else models.ConstantVelocity(
         axes=2, period=T, q=Q_INTENSITY)
-    obs = NumpyRangeBearing() if python_obs else vtrack.RangeBearingObservation(
+    obs = NumpyRangeBearing() if python_obs else models.RangeBearingObservation(
         sigma_range=SIGMA_RANGE, sigma_bearing=SIGMA_BEARING)
     pf = vtrack.ParticleFilter(motion, obs, prior=vtrack.Gaussian(X0, P0), n_particles=n,
                                resampling="systematic", ess_threshold=1.0, seed=seed,

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "common.hpp"
+#include "params.hpp"
 #include "vtrack/core/errors.hpp"
 #include "vtrack/core/gaussian.hpp"
 #include "vtrack/core/resampling.hpp"
@@ -387,7 +388,6 @@ void common_estimates(Cls& cls) {
 }
 
 void bind_particle_filter(py::module_& m) {
-  const smc::SirParams sir;
   py::class_<ParticleFilter> pf(m, "ParticleFilter", R"doc(
 Sequential importance resampling particle filter (particle-filters-human-vehicle §1.2,
 part-based-graphical-model-pf Section 2) on vtrack's SMC engine.
@@ -407,25 +407,11 @@ weights. Python models are called once per step on whole arrays (see docs/smc.md
 If every particle has likelihood zero the update is skipped (weights kept, log_evidence -inf).
 )doc");
   pf.def(py::init([](const py::handle& motion, const py::handle& observation,
-                     const py::handle& prior, int n_particles, const std::string& resampling,
-                     double ess_threshold, std::uint64_t seed, int resample_move_steps,
-                     double move_scale, int threads) {
-           smc::SirParams p;
-           p.n_particles = n_particles;
-           p.resampling = core::parse_resampling_scheme(resampling);
-           p.ess_threshold = ess_threshold;
-           p.seed = seed;
-           p.resample_move_steps = resample_move_steps;
-           p.move_scale = move_scale;
-           p.threads = threads;
-           return ParticleFilter(motion, observation, prior, p);
+                     const py::handle& prior, const py::kwargs& kwargs) {
+           return ParticleFilter(motion, observation, prior,
+                                 params_from_kwargs<smc::SirParams>(kwargs, "particle filter"));
          }),
-         py::arg("motion"), py::arg("observation"), py::kw_only(), py::arg("prior"),
-         py::arg("n_particles") = sir.n_particles,
-         py::arg("resampling") = core::to_string(sir.resampling),
-         py::arg("ess_threshold") = sir.ess_threshold, py::arg("seed") = sir.seed,
-         py::arg("resample_move_steps") = sir.resample_move_steps,
-         py::arg("move_scale") = sir.move_scale, py::arg("threads") = sir.threads)
+         py::arg("motion"), py::arg("observation"), py::kw_only(), py::arg("prior"))
       .def("step", &ParticleFilter::step, py::arg("z"),
            "One predict-update(-resample) cycle with measurement z; returns the weighted mean.")
       .def("predict", &ParticleFilter::predict,
@@ -466,10 +452,12 @@ If every particle has likelihood zero the update is skipped (weights kept, log_e
       .def_property_readonly(
           "dim", [](const ParticleFilter& w) { return w.visit([](const auto& f) { return static_cast<int>(f.particles().dim()); }); });
   common_estimates<decltype(pf), ParticleFilter>(pf);
+  def_params<smc::SirParams>(pf, [](const ParticleFilter& w) {
+    return w.visit([](const auto& f) { return f.params(); });
+  });
 }
 
 void bind_mcmc_filter(py::module_& m) {
-  const smc::McmcParams mc;
   py::class_<McmcParticleFilter> mcmc(m, "MCMCParticleFilter", R"doc(
 MCMC particle filter (particle-filters-human-vehicle §1.3, §3.3): each step(z) runs one
 Metropolis-Hastings chain of burn_in + thinning * n_particles proposals and keeps every
@@ -482,21 +470,12 @@ The motion model must be a built-in one; the observation may be a Python object 
 chain step, on one particle).
 )doc");
   mcmc.def(py::init([](const py::handle& motion, const py::handle& observation,
-                       const core::Gaussian& prior, int n_particles, int burn_in, int thinning,
-                       const std::string& reference, double proposal_scale, std::uint64_t seed) {
-             smc::McmcParams p;
-             p.n_particles = n_particles;
-             p.burn_in = burn_in;
-             p.thinning = thinning;
-             p.reference = smc::parse_mcmc_reference(reference);
-             p.proposal_scale = proposal_scale;
-             p.seed = seed;
-             return McmcParticleFilter(motion, observation, prior, p);
+                       const core::Gaussian& prior, const py::kwargs& kwargs) {
+             return McmcParticleFilter(
+                 motion, observation, prior,
+                 params_from_kwargs<smc::McmcParams>(kwargs, "MCMC particle filter"));
            }),
-           py::arg("motion"), py::arg("observation"), py::kw_only(), py::arg("prior"),
-           py::arg("n_particles") = mc.n_particles, py::arg("burn_in") = mc.burn_in,
-           py::arg("thinning") = mc.thinning, py::arg("reference") = smc::to_string(mc.reference),
-           py::arg("proposal_scale") = mc.proposal_scale, py::arg("seed") = mc.seed)
+           py::arg("motion"), py::arg("observation"), py::kw_only(), py::arg("prior"))
       .def("step", &McmcParticleFilter::step, py::arg("z"),
            "One chain for measurement z; returns the sample mean.")
       .def_property_readonly(
@@ -512,6 +491,9 @@ chain step, on one particle).
           [](const McmcParticleFilter& w) { return w.visit([](const auto& f) { return f.proposals(); }); },
           "Proposals made by the last step's chain: burn_in + thinning * n_particles.");
   common_estimates<decltype(mcmc), McmcParticleFilter>(mcmc);
+  def_params<smc::McmcParams>(mcmc, [](const McmcParticleFilter& w) {
+    return w.visit([](const auto& f) { return f.params(); });
+  });
 }
 
 }  // namespace

@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 
 import vtrack
+from vtrack import models
 
 T, Q_INTENSITY = 1.0, 0.5
 H = np.array([[1.0, 0, 0, 0], [0, 0, 1.0, 0]])
@@ -48,7 +49,7 @@ def kalman(zs):
 
 def make_pf(seed=0, n=20000, motion=None, observation=None, **kwargs):
     return vtrack.ParticleFilter(
-        motion if motion is not None else vtrack.ConstantVelocity(axes=2, period=T, q=Q_INTENSITY),
+        motion if motion is not None else models.ConstantVelocity(axes=2, period=T, q=Q_INTENSITY),
         observation if observation is not None else vtrack.LinearGaussianObservation(H, R),
         prior=vtrack.Gaussian(M0, P0), n_particles=n, seed=seed, **kwargs)
 
@@ -126,7 +127,7 @@ def test_same_seed_same_particles_and_threads_do_not_matter():
     assert not np.array_equal(runs[3][0], runs[0][0])
     # Seeds are unsigned 64-bit.
     make_pf(2**64 - 1, n=10).step(zs[0])
-    with pytest.raises(TypeError):
+    with pytest.raises(ValueError, match="seed must be an int in"):
         make_pf(-1, n=10)
 
 
@@ -134,22 +135,22 @@ def test_same_seed_same_particles_and_threads_do_not_matter():
 
 def test_motion_models_are_the_papers_matrices():
     F, Q = cv_matrices(q=0.25, period=0.5)
-    cv = vtrack.ConstantVelocity(axes=2, period=0.5, q=0.25)
+    cv = models.ConstantVelocity(axes=2, period=0.5, q=0.25)
     assert np.allclose(cv.F, F) and np.allclose(cv.Q, Q)
     g = np.array([0.5**2 / 2, 0.5])
-    discrete = vtrack.ConstantVelocity(axes=3, period=0.5, q=0.25, noise="discrete")
+    discrete = models.ConstantVelocity(axes=3, period=0.5, q=0.25, noise="discrete")
     assert np.allclose(discrete.Q, np.kron(np.eye(3), 0.25 * np.outer(g, g)))
     assert discrete.noise_dim == 3
-    ar = vtrack.SecondOrderAutoRegressive(sigma=[1.0, 2.0])  # eq. 13 on [X_k, X_k-1]
+    ar = models.SecondOrderAutoRegressive(sigma=[1.0, 2.0])  # eq. 13 on [X_k, X_k-1]
     assert np.allclose(ar.F, [[2, 0, -1, 0], [0, 2, 0, -1], [1, 0, 0, 0], [0, 1, 0, 0]])
     assert np.allclose(ar.Q, np.diag([1.0, 4.0, 0, 0]))
-    rw = vtrack.RandomWalk(sigma=2.0, dims=3)
+    rw = models.RandomWalk(sigma=2.0, dims=3)
     assert np.allclose(rw.Q, 4 * np.eye(3)) and rw.dim == 3
-    assert vtrack.RandomWalk(sigma=[1.0, 2.0]).dim == 2
+    assert models.RandomWalk(sigma=[1.0, 2.0]).dim == 2
     with pytest.raises(ValueError):
-        vtrack.ConstantVelocity(noise="white")
+        models.ConstantVelocity(noise="white")
     with pytest.raises(ValueError):
-        vtrack.RandomWalk(sigma=[1.0, -1.0])
+        models.RandomWalk(sigma=[1.0, -1.0])
 
 
 def range_bearing_log_likelihood(particles, z, sigma_range=1.0, sigma_bearing=0.01):
@@ -164,7 +165,7 @@ def range_bearing_log_likelihood(particles, z, sigma_range=1.0, sigma_bearing=0.
 def test_range_bearing_likelihood_matches_numpy():
     rng = np.random.default_rng(1)
     x = rng.normal(size=(500, 4)) * 80
-    obs = vtrack.RangeBearingObservation(sigma_range=1.0, sigma_bearing=0.01)
+    obs = models.RangeBearingObservation(sigma_range=1.0, sigma_bearing=0.01)
     for z in ([100.0, 0.3], [80.0, np.pi - 1e-3], [80.0, -np.pi + 1e-3]):
         assert np.allclose(obs.log_likelihood(x, z), range_bearing_log_likelihood(x, np.array(z)),
                            rtol=1e-9)
@@ -203,8 +204,8 @@ def test_python_observation_gives_the_builtin_results():
     # up to rounding gives the same estimates.
     truth, zs = range_bearing_problem()
     prior = vtrack.Gaussian([120, 1, 60, 1.5], np.diag([25.0, 1, 25, 1]))
-    motion = vtrack.ConstantVelocity(q=0.25)
-    builtin = vtrack.ParticleFilter(motion, vtrack.RangeBearingObservation(), prior=prior,
+    motion = models.ConstantVelocity(q=0.25)
+    builtin = vtrack.ParticleFilter(motion, models.RangeBearingObservation(), prior=prior,
                                     n_particles=5000, seed=3)
     python = vtrack.ParticleFilter(motion, NumpyRangeBearing(), prior=prior, n_particles=5000, seed=3)
     a = np.array([builtin.step(z) for z in zs])
@@ -233,7 +234,7 @@ def test_linear_gaussian_motion_and_second_order_models_filter():
     assert_matches_kalman(
         lambda seed: make_pf(seed, n=2000, motion=vtrack.LinearGaussianMotion(F, Q)),
         simulate(10), what="LinearGaussianMotion")
-    ar = vtrack.ParticleFilter(vtrack.SecondOrderAutoRegressive(sigma=0.5, dims=2),
+    ar = vtrack.ParticleFilter(models.SecondOrderAutoRegressive(sigma=0.5, dims=2),
                                vtrack.LinearGaussianObservation(np.eye(2, 4), np.eye(2)),
                                prior=vtrack.Gaussian(np.zeros(4), np.eye(4)), n_particles=1000,
                                resample_move_steps=1)
@@ -245,7 +246,7 @@ def test_linear_gaussian_motion_and_second_order_models_filter():
 
 def test_bad_arguments_raise_named_errors():
     prior = vtrack.Gaussian(M0, P0)
-    cv, obs = vtrack.ConstantVelocity(), vtrack.LinearGaussianObservation(H, R)
+    cv, obs = models.ConstantVelocity(), vtrack.LinearGaussianObservation(H, R)
     with pytest.raises(TypeError, match="motion"):
         vtrack.ParticleFilter(3, obs, prior=prior)
     with pytest.raises(TypeError, match="observation"):
@@ -291,7 +292,7 @@ def test_python_models_with_wrong_output_raise():
         vtrack.ParticleFilter(WrongShape(), vtrack.LinearGaussianObservation(H, R), prior=prior,
                               n_particles=50).step([0.0, 0.0])
     with pytest.raises(ValueError, match="particle 3"):
-        vtrack.ParticleFilter(vtrack.ConstantVelocity(), NanLikelihood(), prior=prior,
+        vtrack.ParticleFilter(models.ConstantVelocity(), NanLikelihood(), prior=prior,
                               n_particles=50).step([0.0, 0.0])
     with pytest.raises(ValueError, match="resample_move"):
         vtrack.ParticleFilter(NumpyConstantVelocity(), vtrack.LinearGaussianObservation(H, R),
@@ -303,7 +304,7 @@ def test_all_likelihoods_zero_keeps_the_weights_and_gives_no_nan():
         def log_likelihood(self, particles, z):
             return np.full(len(particles), -np.inf)
 
-    pf = vtrack.ParticleFilter(vtrack.ConstantVelocity(), Nowhere(), prior=vtrack.Gaussian(M0, P0),
+    pf = vtrack.ParticleFilter(models.ConstantVelocity(), Nowhere(), prior=vtrack.Gaussian(M0, P0),
                                n_particles=300)
     mean = pf.step([0.0])
     assert np.all(np.isfinite(mean)) and np.all(np.isfinite(pf.map_estimate))
@@ -317,7 +318,7 @@ def test_all_likelihoods_zero_keeps_the_weights_and_gives_no_nan():
 def test_mcmc_filter_tracks_and_counts_its_proposals(reference):
     zs = simulate(11)
     exact, _ = kalman(zs)
-    mc = vtrack.MCMCParticleFilter(vtrack.ConstantVelocity(period=T, q=Q_INTENSITY),
+    mc = vtrack.MCMCParticleFilter(models.ConstantVelocity(period=T, q=Q_INTENSITY),
                                    vtrack.LinearGaussianObservation(H, R),
                                    prior=vtrack.Gaussian(M0, P0), n_particles=1000, burn_in=200,
                                    thinning=3, reference=reference, proposal_scale=1.0, seed=2)
@@ -338,15 +339,41 @@ def test_mcmc_filter_refusals():
     prior = vtrack.Gaussian(M0, P0)
     obs = vtrack.LinearGaussianObservation(H, R)
     with pytest.raises(ValueError, match="singular"):
-        vtrack.MCMCParticleFilter(vtrack.ConstantVelocity(noise="discrete"), obs, prior=prior,
+        vtrack.MCMCParticleFilter(models.ConstantVelocity(noise="discrete"), obs, prior=prior,
                                   reference="all")
     with pytest.raises(TypeError, match="built-in motion"):
         vtrack.MCMCParticleFilter(NumpyConstantVelocity(), obs, prior=prior)
     with pytest.raises(ValueError, match="reference"):
-        vtrack.MCMCParticleFilter(vtrack.ConstantVelocity(), obs, prior=prior, reference="best")
-    mc = vtrack.MCMCParticleFilter(vtrack.ConstantVelocity(noise="discrete"), NumpyRangeBearing(),
+        vtrack.MCMCParticleFilter(models.ConstantVelocity(), obs, prior=prior, reference="best")
+    mc = vtrack.MCMCParticleFilter(models.ConstantVelocity(noise="discrete"), NumpyRangeBearing(),
                                    prior=vtrack.Gaussian([120, 1, 60, 1.5], np.diag([25.0, 1, 25, 1])),
                                    n_particles=50, burn_in=10, thinning=1, reference="map")
     assert np.all(np.isfinite(mc.step([134.0, 0.46])))
     with pytest.raises(ValueError, match="z"):
         mc.step([np.nan, 0.0])
+
+
+# ---- the tracker surface (issue 9): parameter tables, keywords, default_params -------------
+
+def test_keywords_go_through_the_parameter_tables():
+    assert vtrack.ParticleFilter.default_params() == {
+        "n_particles": 1000, "resampling": "systematic", "ess_threshold": 1.0,
+        "resample_move_steps": 0, "move_scale": 0.5, "threads": 1, "seed": 0}
+    assert vtrack.MCMCParticleFilter.default_params() == {
+        "n_particles": 1000, "burn_in": 500, "thinning": 2, "reference": "all",
+        "proposal_scale": 0.5, "seed": 0}
+    pf = make_pf(3, n=10, ess_threshold=0.5, resampling="residual")
+    assert pf.params == {**vtrack.ParticleFilter.default_params(), "n_particles": 10,
+                         "ess_threshold": 0.5, "resampling": "residual", "seed": 3}
+    with pytest.raises(TypeError, match="did you mean 'ess_threshold'"):
+        make_pf(n=10, ess_treshold=0.5)
+    with pytest.raises(TypeError, match="burn_in"):
+        make_pf(n=10, burn_in=3)  # an MCMC parameter
+    with pytest.raises(TypeError, match="n_particles"):
+        make_pf(n=10.5)
+    mc = vtrack.MCMCParticleFilter(models.ConstantVelocity(), vtrack.LinearGaussianObservation(H, R),
+                                   prior=vtrack.Gaussian(M0, P0), reference="map", burn_in=7)
+    assert mc.params["reference"] == "map" and mc.params["burn_in"] == 7
+    with pytest.raises(ValueError, match="reference"):
+        vtrack.MCMCParticleFilter(models.ConstantVelocity(), vtrack.LinearGaussianObservation(H, R),
+                                  prior=vtrack.Gaussian(M0, P0), reference="best")

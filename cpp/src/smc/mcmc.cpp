@@ -16,22 +16,39 @@ void validate(const McmcParams& p) {
           p.proposal_scale, "positive and finite");
 }
 
+const std::vector<std::pair<std::string, McmcReference>>& mcmc_reference_names() {
+  static const std::vector<std::pair<std::string, McmcReference>> names{
+      {"all", McmcReference::All},
+      {"random", McmcReference::Random},
+      {"map", McmcReference::Map},
+      {"mean", McmcReference::Mean}};
+  return names;
+}
+
 McmcReference parse_mcmc_reference(const std::string& name) {
-  if (name == "all") return McmcReference::All;
-  if (name == "random") return McmcReference::Random;
-  if (name == "map") return McmcReference::Map;
-  if (name == "mean") return McmcReference::Mean;
+  for (const auto& [text, value] : mcmc_reference_names()) {
+    if (text == name) return value;
+  }
   throw InvalidArgument("reference must be 'all', 'random', 'map' or 'mean', got '" + name + "'");
 }
 
 const char* to_string(McmcReference reference) {
-  switch (reference) {
-    case McmcReference::All: return "all";
-    case McmcReference::Random: return "random";
-    case McmcReference::Map: return "map";
-    case McmcReference::Mean: return "mean";
+  for (const auto& [text, value] : mcmc_reference_names()) {
+    if (value == reference) return text.c_str();
   }
   return "unknown";
+}
+
+const core::ParameterTable<McmcParams>& McmcParams::table() {
+  using P = McmcParams;
+  static const auto t = core::ParameterTable<P>()
+                            .add("n_particles", &P::n_particles)
+                            .add("burn_in", &P::burn_in)
+                            .add("thinning", &P::thinning)
+                            .add_choice("reference", &P::reference, mcmc_reference_names())
+                            .add("proposal_scale", &P::proposal_scale)
+                            .add("seed", &P::seed);
+  return t;
 }
 
 }  // namespace vtrack::smc

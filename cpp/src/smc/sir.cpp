@@ -2,6 +2,19 @@
 
 namespace vtrack::smc {
 
+const core::ParameterTable<SirParams>& SirParams::table() {
+  using P = SirParams;
+  static const auto t = core::ParameterTable<P>()
+                            .add("n_particles", &P::n_particles)
+                            .add_choice("resampling", &P::resampling, core::resampling_scheme_names())
+                            .add("ess_threshold", &P::ess_threshold)
+                            .add("resample_move_steps", &P::resample_move_steps)
+                            .add("move_scale", &P::move_scale)
+                            .add("threads", &P::threads)
+                            .add("seed", &P::seed);
+  return t;
+}
+
 void validate(const SirParams& p) {
   require(p.n_particles >= 1, "n_particles", p.n_particles, ">= 1");
   require(p.ess_threshold >= 0.0 && p.ess_threshold <= 1.0, "ess_threshold", p.ess_threshold,

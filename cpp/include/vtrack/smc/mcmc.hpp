@@ -24,12 +24,14 @@
 #include <limits>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <Eigen/Core>
 #include <Eigen/LU>
 
 #include "vtrack/core/errors.hpp"
 #include "vtrack/core/gaussian.hpp"
+#include "vtrack/core/parameters.hpp"
 #include "vtrack/core/random.hpp"
 #include "vtrack/core/vmath.hpp"
 #include "vtrack/smc/mh.hpp"
@@ -41,6 +43,8 @@ enum class McmcReference { All, Random, Map, Mean };
 // Parses "all", "random", "map" or "mean"; InvalidArgument otherwise.
 McmcReference parse_mcmc_reference(const std::string& name);
 const char* to_string(McmcReference reference);
+// Every reference with its name, in the order above.
+const std::vector<std::pair<std::string, McmcReference>>& mcmc_reference_names();
 
 struct McmcParams {
   int n_particles = 1000;  // N_s, samples kept per step
@@ -49,6 +53,9 @@ struct McmcParams {
   McmcReference reference = McmcReference::All;
   double proposal_scale = 0.5;  // s, in units of the process noise
   std::uint64_t seed = 0;
+
+  // Names for config files and Python keywords (core/parameters.hpp); defined in mcmc.cpp.
+  static const core::ParameterTable<McmcParams>& table();
 };
 void validate(const McmcParams& params);
 

@@ -35,6 +35,7 @@
 
 #include "vtrack/core/errors.hpp"
 #include "vtrack/core/gaussian.hpp"
+#include "vtrack/core/parameters.hpp"
 #include "vtrack/core/random.hpp"
 #include "vtrack/core/resampling.hpp"
 #include "vtrack/core/vmath.hpp"
@@ -59,6 +60,9 @@ struct SirParams {
   // identical for every value (per-block random streams, blocks.hpp).
   int threads = 1;
   std::uint64_t seed = 0;
+
+  // Names for config files and Python keywords (core/parameters.hpp); defined in sir.cpp.
+  static const core::ParameterTable<SirParams>& table();
 };
 void validate(const SirParams& params);
 
