@@ -125,8 +125,7 @@ void validate(const MultiBernoulliParams& p) {
 }
 
 Eigen::Vector4f BernoulliComponent::mean() const {
-  const Eigen::VectorXd w = log_weights.array().exp();
-  return (particles.cast<double>() * w / w.sum()).cast<float>();
+  return particles.mean().cast<float>();
 }
 
 double box_overlap(const Eigen::Vector4f& a, const Eigen::Vector4f& b) {
@@ -147,11 +146,12 @@ double updated_existence(double r, double log_rho) {
 
 MultiBernoulliFilter::MultiBernoulliFilter(int width, int height,
                                            const MultiBernoulliParams& params)
-    : params_(params), width_(width), height_(height), rng_(params.seed),
+    : params_((validate(params), params)), width_(width), height_(height), rng_(params.seed),
+      motion_(models::RandomWalkParams{
+          {params.sigma_x, params.sigma_y, params.sigma_w, params.sigma_h}, 4}),
       likelihood_(params.likelihood), management_(params.management) {
   if (width < 1) throw InvalidArgument("width must be >= 1, got " + std::to_string(width));
   if (height < 1) throw InvalidArgument("height must be >= 1, got " + std::to_string(height));
-  validate(params_);
 }
 
 const Tracks& MultiBernoulliFilter::step(const cv::Mat& y) {
@@ -230,26 +230,30 @@ void MultiBernoulliFilter::manage_tracks() {
   }
 }
 
-void MultiBernoulliFilter::clamp_sizes(BoxStates& s) const {
-  s.row(2) = s.row(2).cwiseMax(float(params_.width_min)).cwiseMin(float(params_.width_max));
-  s.row(3) = s.row(3).cwiseMax(float(params_.height_min)).cwiseMin(float(params_.height_max));
+void MultiBernoulliFilter::clamp_sizes(BoxParticles::States& s) const {
+  s.col(2) = s.col(2).cwiseMax(float(params_.width_min)).cwiseMin(float(params_.width_max));
+  s.col(3) = s.col(3).cwiseMax(float(params_.height_min)).cwiseMin(float(params_.height_max));
 }
 
 void MultiBernoulliFilter::predict() {
-  // Eq. (22): r <- P_S r; x <- x + e with e ~ N(0, diag(sigma^2)); weights unchanged.
-  const Eigen::Array4f sigma(float(params_.sigma_x), float(params_.sigma_y),
-                             float(params_.sigma_w), float(params_.sigma_h));
+  // Eq. (22): r <- P_S r; x <- x + e with e ~ N(0, diag(sigma^2)) (motion_); weights unchanged.
   for (auto& c : components_) {
     c.existence *= params_.survival_probability;
-    const auto n = static_cast<std::size_t>(c.particles.cols());
-    noise_.resize(4 * n);
+    const Eigen::Index n = c.particles.size();
+    // The normals are drawn particle by particle (each particle's four in a row), the order this
+    // filter has always used, so a seed gives the tracks it gave; the engine's eps is n x 4.
+    noise_.resize(4 * static_cast<std::size_t>(n));
     rng_.fill_normal(noise_.data(), noise_.size());
-    const Eigen::Map<const BoxStates> e(noise_.data(), 4, c.particles.cols());
-    c.particles += (e.array().colwise() * sigma).matrix();
+    eps_ = Eigen::Map<const BoxStates>(noise_.data(), 4, n).transpose();
+    next_.resize(n, 4);
+    motion_.propagate(models::StatesView<float>(c.particles.states()),
+                      models::StatesView<float>(eps_), models::MutableStatesView<float>(next_));
+    std::swap(c.particles.states(), next_);
     // Beyond the paper: the drift v of MultiBernoulliParams::velocity_smoothing (zero when off).
-    c.particles.row(0).array() += c.record.velocity[0];
-    c.particles.row(1).array() += c.record.velocity[1];
-    clamp_sizes(c.particles);
+    auto& x = c.particles.states();
+    x.col(0).array() += c.record.velocity[0];
+    x.col(1).array() += c.record.velocity[1];
+    clamp_sizes(x);
   }
 }
 
@@ -257,8 +261,7 @@ void MultiBernoulliFilter::add_birth(double existence, double cx_lo, double cx_h
                                      double cy_hi, const Eigen::Vector2d& size,
                                      const Eigen::Vector2d& size_std) {
   const int n = params_.birth_particles;
-  BernoulliComponent c{next_label_++, frame_, existence, BoxStates(4, n),
-                       Eigen::VectorXd::Constant(n, -std::log(double(n)))};
+  BoxParticles::States x(n, 4);
   // 2n uniforms for the centres, 2n normals for the sizes, drawn in batches.
   std::vector<double> u(2 * static_cast<std::size_t>(n));
   std::vector<double> z(2 * static_cast<std::size_t>(n));
@@ -272,9 +275,10 @@ void MultiBernoulliFilter::add_birth(double existence, double cx_lo, double cx_h
                                 params_.height_max);
     const double cx = cx_lo + (cx_hi - cx_lo) * u[2 * j];
     const double cy = cy_lo + (cy_hi - cy_lo) * u[2 * j + 1];
-    c.particles.col(j) << float(cx - 0.5 * w), float(cy - 0.5 * h), float(w), float(h);
+    x.row(j) << float(cx - 0.5 * w), float(cy - 0.5 * h), float(w), float(h);
   }
-  components_.push_back(std::move(c));
+  // Equal weights 1/n.
+  components_.push_back({next_label_++, frame_, existence, BoxParticles(std::move(x))});
 }
 
 void MultiBernoulliFilter::add_quarter_births() {
@@ -356,11 +360,12 @@ void MultiBernoulliFilter::update() {
       const bool established = frame_ - covered_births_[k] >= params_.established_age;
       if (covered_labels_[k] != c.label && (older || established)) explained_.push_back(covered_[k]);
     }
-    likelihood_.log_likelihood(c.particles, log_g_, explained_);
-    // rho = sum_j w_j g_y(x_j) (eq. 23-24), in logs: log_sum_exp(log w + log g).
-    c.log_weights += log_g_;
-    const double log_rho = core::log_sum_exp(c.log_weights);
-    c.log_weights.array() -= log_rho;  // eq. (24)
+    // (The likelihood reads boxes as columns: a 4 x L copy, small next to its per-box sums.)
+    likelihood_.log_likelihood(c.particles.states().transpose(), log_g_, explained_);
+    // Eq. (24), w_j <- w_j g_y(x_j) / rho, is the engine's reweighting, and its log normaliser
+    // is log rho = log sum_j w_j g_y(x_j) of eq. (23). (Should every g_y underflow, rho = 0: the
+    // weights are kept and r drops to 0, to be pruned.)
+    const double log_rho = c.particles.reweight(log_g_).log_normaliser;
     c.existence = std::min(updated_existence(c.existence, log_rho), params_.max_existence);
   }
 }
@@ -393,17 +398,15 @@ void merge_overlapping(std::vector<BernoulliComponent>& components, double min_o
       if (absorbed) absorbed->push_back(b);
       // The merged Bernoulli exists if either does: r = 1 - (1 - r_a)(1 - r_b); its density is
       // the r-weighted mixture of the two particle sets.
-      const Eigen::Index na = a.particles.cols();
-      const Eigen::Index nb = b.particles.cols();
-      BoxStates particles(4, na + nb);
-      particles << a.particles, b.particles;
+      const Eigen::Index na = a.particles.size();
+      const Eigen::Index nb = b.particles.size();
+      BoxParticles::States x(na + nb, 4);
+      x << a.particles.states(), b.particles.states();
       Eigen::VectorXd lw(na + nb);
       // (r > 0 unless the prune threshold is 0; the floor keeps the logs finite.)
-      lw << a.log_weights.array() + std::log(std::max(a.existence, 1e-300)),
-          b.log_weights.array() + std::log(std::max(b.existence, 1e-300));
-      lw.array() -= core::log_sum_exp(lw);
-      a.particles = std::move(particles);
-      a.log_weights = std::move(lw);
+      lw << a.particles.log_weights().array() + std::log(std::max(a.existence, 1e-300)),
+          b.particles.log_weights().array() + std::log(std::max(b.existence, 1e-300));
+      a.particles = BoxParticles(std::move(x), lw);  // normalises the weights
       a.existence = std::min(1.0 - (1.0 - a.existence) * (1.0 - b.existence), max_existence);
       means[i] = a.mean();
       merged[j] = true;
@@ -440,13 +443,7 @@ void MultiBernoulliFilter::resample() {
     const auto count = static_cast<std::size_t>(std::clamp<double>(
         std::ceil(c.existence * params_.max_particles), params_.min_particles,
         params_.max_particles));
-    const Eigen::VectorXd w = c.log_weights.array().exp();
-    const std::vector<std::int64_t> idx = core::resample(params_.resampling, w, count, rng_);
-    BoxStates next(4, static_cast<Eigen::Index>(count));
-    for (std::size_t j = 0; j < count; ++j) next.col(j) = c.particles.col(idx[j]);
-    c.particles = std::move(next);
-    c.log_weights = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(count),
-                                              -std::log(double(count)));
+    c.particles.resample(params_.resampling, static_cast<Eigen::Index>(count), rng_);
   }
 }
 
