@@ -59,6 +59,7 @@ sys.path.insert(0, os.path.dirname(__file__))
 from _table import print_table  # noqa: E402
 
 import vtrack  # noqa: E402
+from vtrack import models  # noqa: E402
 
 STEPS = 100
 T = 1.0
