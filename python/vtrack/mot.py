@@ -8,11 +8,12 @@ target), so an interrupted run never leaves a half-written file. :func:`read_mot
 from __future__ import annotations
 
 import os
-import tempfile
 from pathlib import Path
 from typing import Iterable, Sequence, Union
 
 import numpy as np
+
+from ._files import atomic_open
 
 PathLike = Union[str, "os.PathLike[str]"]
 
@@ -34,7 +35,9 @@ def track_rows(frame: int, tracks: Iterable) -> list:
 def write_mot(path: PathLike, rows: Union[np.ndarray, Sequence[Sequence[float]]]) -> None:
     """Write rows of at least 7 columns (frame, id, x, y, w, h, conf[, x3d, y3d, z3d]).
 
-    Missing 3-D columns are written as -1. Frame and id are written as integers.
+    Missing 3-D columns are written as -1. Frame and id are written as integers, the box with
+    two decimals and conf with four, as the C++ writer behind ``vtrack track`` does, so the same
+    rows give the same bytes from Python and from the CLI.
     """
     arr = np.asarray(rows, dtype=np.float64)
     if arr.size == 0:
@@ -45,20 +48,10 @@ def write_mot(path: PathLike, rows: Union[np.ndarray, Sequence[Sequence[float]]]
         raise ValueError("rows contain NaN or infinite values")
     if arr.shape[1] < 10:
         arr = np.hstack([arr, -np.ones((arr.shape[0], 10 - arr.shape[1]))])
-    path = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent or ".")
-    try:
-        with os.fdopen(fd, "w") as f:
-            for r in arr:
-                f.write(f"{int(r[0])},{int(r[1])},{r[2]:.2f},{r[3]:.2f},{r[4]:.2f},{r[5]:.2f},"
-                        f"{r[6]:.4g},{r[7]:g},{r[8]:g},{r[9]:g}\n")
-        os.replace(tmp, path)
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except FileNotFoundError:
-            pass
-        raise
+    with atomic_open(path) as f:
+        for r in arr:
+            f.write(f"{int(r[0])},{int(r[1])},{r[2]:.2f},{r[3]:.2f},{r[4]:.2f},{r[5]:.2f},"
+                    f"{r[6]:.4f},{r[7]:g},{r[8]:g},{r[9]:g}\n")
 
 
 def read_mot(path: PathLike) -> np.ndarray:
