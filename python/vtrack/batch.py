@@ -1,0 +1,759 @@
+"""Many videos at once on Dask: ``vtrack batch`` (the C++ CLI runs ``python -m vtrack.batch``).
+
+    vtrack batch INPUTS... --out DIR [--method mb] [--detector hog] [--config FILE]
+                 [--set name=value ...] [--seed N] [--render] [--gt PATTERN]
+                 [--workers N | --scheduler ADDRESS] [--force]
+
+and from Python ``vtrack.batch.track_many(inputs, out_dir, client=None, **params)``. One Dask
+task tracks one input, exactly as ``vtrack track`` would (same parameters, same seed, same bytes
+in ``tracks.txt``). docs/batch.md is the user's guide; the definitions:
+
+INPUTS    video files, image folders, glob patterns (expanded here, ``**`` included) and text files
+          (``.txt``, ``.lst``, ``.list``) listing them one per line (blank lines and ``#`` comments
+          skipped, relative paths relative to the list). A path given twice runs once. A missing
+          or unreadable input fails its own task; a pattern matching nothing is a usage error.
+names     results go to ``DIR/<name>/``: a video's file stem, an image folder's name (MOTChallenge's
+          ``SEQ/img1`` is named ``SEQ``). Colliding names are replaced by names built from the end
+          of their paths: ``a/cam.avi``, ``b/cam.avi`` -> ``a__cam``, ``b__cam``; ``cam.avi``,
+          ``cam.mp4`` -> ``cam.avi``, ``cam.mp4`` (a hash of the path when nothing else
+          separates them). The rule depends on the set of inputs, not on their order.
+outputs   ``tracks.txt`` (MOTChallenge), ``render.mp4`` (--render), ``run.json`` (input,
+          parameters, vtrack version, seed, frames, seconds, fps, status, error, metrics, worker),
+          and ``DIR/summary.csv`` (``input,name,status,frames,seconds,fps,error`` and, with --gt,
+          ``HOTA,MOTA,IDF1``; one row per finished input, in input order), rewritten after every
+          result. Every file is written under a temporary name and renamed when whole.
+complete  an input is complete when its ``run.json`` says ``ok`` for the same input path and the
+          same parameters and its outputs are there. The worker renames ``tracks.txt`` (and the
+          render) into place, then the client writes ``run.json``, last. A re-run skips complete
+          inputs and redoes the rest (failed, interrupted, parameters changed); ``--force`` redoes
+          all. The vtrack version is recorded, not compared: re-run with --force after upgrading.
+faults    an input's error (OSError from the reader: missing, corrupt, truncated) is caught in its
+          task and reported in ``run.json`` and ``summary.csv`` (status ``failed``); a worker that
+          dies mid-task is replaced and the task rerun by Dask (the scheduler's
+          ``distributed.scheduler.allowed-failures``, default 3, after which the input fails with
+          ``KilledWorker``). Ctrl-C cancels the tasks, stops a cluster we started and removes the
+          temporary files of the unfinished inputs; an attempt's leftovers are also removed when
+          its input is next tracked.
+--gt      a path pattern with ``{name}`` (the output name), ``{stem}`` (file stem or folder name),
+          ``{dir}`` (the input's folder) or ``{input}``, e.g. ``MOT15/train/{name}/gt/gt.txt``;
+          metrics by :func:`vtrack.evaluate.evaluate` (TrackEval). A missing ground-truth file
+          leaves the metrics empty and says so in the error column; the input stays ``ok``.
+exit      0 every input ok, 1 some input failed, 2 a usage error (bad option or parameter, no
+          inputs, Dask or TrackEval missing), 130 interrupted.
+
+One task per input. A very long video is one long task; to spread it, cut it into segments (e.g.
+``ffmpeg -ss START -t LENGTH -c copy``, or image folders of frame ranges) that overlap by at least
+the background model's warm-up (N0 * K0 = 100 frames with the defaults) and batch the segments;
+each segment's ids start at 1, so stitch them across the overlap (IoU matching of the shared
+frames). vtrack does not stitch.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import glob
+import hashlib
+import io
+import json
+import os
+import socket
+import sys
+import tempfile
+import time
+import uuid
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from ._files import atomic_open, is_temporary
+
+PathLike = Union[str, "os.PathLike[str]"]
+
+# The methods and detectors vtrack.track_video runs (the lead's reshape adds glmb + hog).
+METHODS = ("mb",)
+DETECTORS = ("hog",)
+
+TRACKS = "tracks.txt"
+RENDER = "render.mp4"
+RUN = "run.json"
+SUMMARY = "summary.csv"
+SUMMARY_COLUMNS = ("input", "name", "status", "frames", "seconds", "fps", "error")
+METRIC_COLUMNS = ("HOTA", "MOTA", "IDF1")
+LIST_SUFFIXES = (".txt", ".lst", ".list")
+_RESERVED_NAMES = {SUMMARY, ".", ".."}
+EXIT_OK, EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 130
+
+
+class UsageError(ValueError):
+    """A mistake in what was asked (exit status 2 from the command line)."""
+
+
+# ---- the one call into vtrack's per-video tracking ------------------------------------------
+
+
+def _track_one(video: str, job: Dict[str, Any], render: Optional[str]) -> Tuple[np.ndarray, int]:
+    """Track one input as ``vtrack track`` would: ``(rows (N, 10) MOT, frames decoded)``.
+
+    The only function that knows ``vtrack.track_video``'s signature. `job` is :func:`make_job`'s:
+    method, detector, seed, config (the config file's sections), params (``--set``).
+    """
+    import vtrack  # noqa: PLC0415 - imported on the worker
+
+    if job["detector"] is not None:
+        raise ValueError(f"detector {job['detector']!r} needs a method that uses detections")
+    config = job["config"]
+    tracker = dict(config.get("tracker", {}))
+    background = dict(config.get("background", {}))
+    tracker_names = vtrack.MultiBernoulliTracker.default_params()
+    for name, value in job["params"].items():
+        (tracker if name in tracker_names else background)[name] = value
+    # One worker per core: the KDE's own OpenCV threads would only oversubscribe the cores (the
+    # tracks do not depend on it).
+    background.setdefault("threads", 1)
+    rows = vtrack.track_video(video, job["method"], seed=job["seed"], render=render,
+                              background=background, **tracker)
+    # track_video does not report the frame count yet: decode once more to count.
+    return rows, vtrack.probe_video(video).frame_count
+
+
+def _load_config(path: str) -> Dict[str, Any]:
+    """A config file's sections as a dict (YAML or JSON, read as ``vtrack track`` reads it)."""
+    import vtrack  # noqa: PLC0415
+
+    if hasattr(vtrack, "load_config"):
+        return dict(vtrack.load_config(path))
+    # Until vtrack.load_config is bound: OpenCV's FileStorage, the parser of the C++ CLI.
+    try:
+        import cv2  # noqa: PLC0415
+    except ImportError as err:
+        raise UsageError("--config needs vtrack.load_config or OpenCV's Python package") from err
+    if not os.path.isfile(path):
+        raise UsageError(f"config file '{path}' does not exist")
+    storage = cv2.FileStorage(path, cv2.FILE_STORAGE_READ)
+    if not storage.isOpened():
+        raise UsageError(f"cannot parse config file '{path}'")
+
+    def value(node):
+        if node.isMap():
+            return {key: value(node.getNode(key)) for key in node.keys()}
+        if node.isInt():
+            return int(node.real())
+        if node.isReal():
+            return float(node.real())
+        text = node.string()
+        return {"true": True, "false": False}.get(text, text)
+
+    return value(storage.root())
+
+
+# ---- inputs -----------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Input:
+    """One video file or image folder, and the name of its output folder."""
+
+    path: str  # absolute
+    name: str
+
+
+def _expand(item: str, from_list: Optional[str] = None) -> List[str]:
+    if os.path.isdir(item):
+        return [os.path.abspath(item)]
+    if os.path.isfile(item) and item.lower().endswith(LIST_SUFFIXES):
+        if from_list is not None:
+            raise UsageError(f"{from_list}: a list cannot name another list ('{item}')")
+        folder = os.path.dirname(os.path.abspath(item))
+        out: List[str] = []
+        with open(item) as f:
+            for line in f:
+                line = line.strip()
+                if line and not line.startswith("#"):
+                    out.extend(_expand(os.path.join(folder, os.path.expanduser(line)), item))
+        return out
+    if os.path.exists(item) or not glob.has_magic(item):
+        return [os.path.abspath(item)]  # a video, or missing: its task reports it
+    matches = sorted(glob.glob(item, recursive=True))
+    if not matches:
+        where = f" (in {from_list})" if from_list else ""
+        raise UsageError(f"pattern '{item}'{where} matches nothing")
+    return [os.path.abspath(m) for m in matches]
+
+
+def _name_candidates(path: str) -> List[str]:
+    """Ever more specific names for `path`'s output folder, the plain one first."""
+    p = Path(path)
+    if p.is_dir():
+        if p.name == "img1" and p.parent.name:  # MOTChallenge: SEQ/img1
+            p = p.parent
+        short, full = p.name, p.name
+    else:
+        short, full = p.stem or p.name, p.name
+    parents = [part for part in p.parent.parts if part not in (p.anchor, "")]
+    out = []
+    for k in range(len(parents) + 1):
+        prefix = parents[len(parents) - k:]
+        out += ["__".join(prefix + [short]), "__".join(prefix + [full])]
+    return list(dict.fromkeys(out))  # drop repeats (folders: short == full)
+
+
+def _unique_names(paths: Sequence[str]) -> List[str]:
+    """Output names: plain unless two inputs share one; then each of those takes its next
+    candidate, until all differ. Depends on the set of paths only, not their order."""
+    candidates = [_name_candidates(p) for p in paths]
+    level = [0] * len(paths)
+    while True:
+        names = [c[min(k, len(c) - 1)] for c, k in zip(candidates, level)]
+        seen: Dict[str, List[int]] = {}
+        for i, n in enumerate(names):
+            seen.setdefault(n, []).append(i)
+        clashes = [ids for n, ids in seen.items() if len(ids) > 1 or n in _RESERVED_NAMES]
+        if not clashes:
+            return names
+        progressed = False
+        for ids in clashes:
+            for i in ids:
+                if level[i] < len(candidates[i]) - 1:
+                    level[i] += 1
+                    progressed = True
+        if not progressed:  # e.g. /x/a/cam.avi vs /x/a__cam.avi: the path's hash settles it
+            for ids in clashes:
+                for i in ids:
+                    digest = hashlib.sha1(paths[i].encode()).hexdigest()[:8]
+                    candidates[i].append(f"{candidates[i][0]}-{digest}")
+                    level[i] = len(candidates[i]) - 1
+
+
+def expand_inputs(items: Union[PathLike, Iterable[PathLike]]) -> List[Input]:
+    """The inputs named by `items` (paths, glob patterns, list files), each with its output name.
+    Raises :class:`UsageError` for a pattern matching nothing or no inputs at all."""
+    if isinstance(items, (str, os.PathLike)):
+        items = [items]
+    paths: List[str] = []
+    seen = set()
+    for item in items:
+        for path in _expand(os.fspath(item)):
+            key = os.path.realpath(path)
+            if key not in seen:
+                seen.add(key)
+                paths.append(path)
+    if not paths:
+        raise UsageError("no inputs")
+    return [Input(p, n) for p, n in zip(paths, _unique_names(paths))]
+
+
+# ---- parameters --------------------------------------------------------------------------------
+
+
+def parse_setting(text: str) -> Tuple[str, Any]:
+    """``name=value`` as ``vtrack track --set`` reads it: true/false, an integer, a real, else
+    the text (e.g. ``resampling=residual``)."""
+    name, eq, raw = text.partition("=")
+    if not eq or not name:
+        raise UsageError(f"--set expects name=value, got '{text}'")
+    if raw in ("true", "false"):
+        return name, raw == "true"
+    for kind in (int, float):
+        try:
+            return name, kind(raw)
+        except ValueError:
+            pass
+    return name, raw
+
+
+def make_job(method: str = "mb", detector: Optional[str] = None, config: Optional[PathLike] = None,
+             seed: Optional[int] = None, render: bool = False, **params) -> Dict[str, Any]:
+    """What every task runs with, as recorded in run.json: the method, the detector, the seed
+    (`seed`, else the config file's, else 0), the config file's sections and the parameters
+    given one by one (they override the config file's)."""
+    if method not in METHODS:
+        raise UsageError(f"method must be one of {', '.join(METHODS)}, got {method!r}")
+    if detector is not None and detector not in DETECTORS:
+        raise UsageError(f"detector must be one of {', '.join(DETECTORS)}, got {detector!r}")
+    sections = _load_config(os.fspath(config)) if config is not None else {}
+    if seed is None:
+        seed = sections.pop("seed", 0)
+    else:
+        sections.pop("seed", None)
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise UsageError(f"seed must be an integer >= 0, got {seed!r}")
+    job = {"method": method, "detector": detector, "seed": seed, "config": sections,
+           "params": dict(params), "render": bool(render)}
+    return json.loads(json.dumps(job))  # as it will read back from run.json
+
+
+def check_job(job: Dict[str, Any]) -> None:
+    """Run `job` on a tiny blank clip, so that a bad parameter is reported once, before any
+    input is tracked (TypeError / ValueError naming it, as vtrack.track_video raises them)."""
+    with tempfile.TemporaryDirectory(prefix="vtrack-check-") as folder:
+        header = b"P6\n128 160\n255\n"
+        for k in range(2):
+            with open(os.path.join(folder, f"{k:02d}.ppm"), "wb") as f:
+                f.write(header + bytes(128 * 160 * 3))
+        _track_one(folder, job, None)
+
+
+# ---- one task ------------------------------------------------------------------------------------
+
+
+def _remove_leftovers(folder: Path) -> None:
+    """Temporary files of an earlier attempt on this input (killed, or interrupted)."""
+    if folder.is_dir():
+        for entry in folder.iterdir():
+            if is_temporary(entry.name) or entry.name.startswith(".render."):
+                entry.unlink(missing_ok=True)
+
+
+def _metrics(tracks: np.ndarray, gt_path: Optional[str]) -> Tuple[Optional[dict], Optional[str]]:
+    if gt_path is None:
+        return None, None
+    from .evaluate import evaluate  # noqa: PLC0415
+    from .mot import read_mot  # noqa: PLC0415
+
+    try:
+        found = evaluate(read_mot(gt_path), tracks)
+    except (OSError, ValueError) as err:
+        return None, f"ground truth: {err}"
+    return {k: found[k] for k in METRIC_COLUMNS}, None
+
+
+def _worker_address() -> Optional[str]:
+    try:
+        from distributed import get_worker  # noqa: PLC0415
+
+        return get_worker().address
+    except (ImportError, ValueError):  # not in a Dask worker
+        return None
+
+
+def run_input(path: str, folder: str, job: Dict[str, Any], gt_path: Optional[str]) -> dict:
+    """The task: track one input into `folder` (tracks.txt, render), never raising for a bad
+    input. Returns the outcome that the client writes to run.json."""
+    import vtrack  # noqa: PLC0415
+
+    from .mot import write_mot  # noqa: PLC0415
+
+    out = Path(folder)
+    out.mkdir(parents=True, exist_ok=True)
+    _remove_leftovers(out)
+    where = {"host": socket.gethostname(), "pid": os.getpid(), "worker": _worker_address(),
+             "vtrack_version": vtrack.__version__}
+    # A render name of this attempt's own: a stray earlier attempt (a worker presumed dead that
+    # still runs) cannot write into the file this one renames.
+    render = str(out / f".render.{uuid.uuid4().hex[:12]}{Path(RENDER).suffix}") if job["render"] else None
+    start = time.perf_counter()
+    try:
+        rows, frames = _track_one(path, job, render)
+        seconds = time.perf_counter() - start
+        write_mot(out / TRACKS, rows)
+        if render is not None:
+            os.replace(render, out / RENDER)
+    except Exception as err:  # noqa: BLE001 - every failure of an input is that input's outcome
+        message = str(err) if isinstance(err, OSError) else f"{type(err).__name__}: {err}"
+        return {"status": "failed", "error": message, "frames": None,
+                "seconds": time.perf_counter() - start, **where}
+    finally:
+        if render is not None:
+            Path(render).unlink(missing_ok=True)
+    metrics, gt_error = _metrics(rows, gt_path)
+    return {"status": "ok", "error": gt_error, "frames": int(frames), "seconds": seconds,
+            "metrics": metrics, **where}
+
+
+# ---- the client's bookkeeping ----------------------------------------------------------------------
+
+
+def _write_json(path: Path, data: dict) -> None:
+    with atomic_open(path) as f:
+        json.dump(data, f, indent=2, sort_keys=True)
+        f.write("\n")
+
+
+def _read_run(folder: Path) -> Optional[dict]:
+    try:
+        with open(folder / RUN) as f:
+            return json.load(f)
+    except (OSError, ValueError):
+        return None
+
+
+def _is_complete(run: Optional[dict], item: Input, job: Dict[str, Any], folder: Path) -> bool:
+    return (run is not None and run.get("status") == "ok" and run.get("input") == item.path
+            and run.get("parameters") == job and (folder / TRACKS).is_file()
+            and (not job["render"] or (folder / RENDER).is_file()))
+
+
+def _gt_path(pattern: Optional[str], item: Input) -> Optional[str]:
+    if pattern is None:
+        return None
+    p = Path(item.path)
+    try:
+        path = pattern.format(name=item.name, stem=p.stem if p.suffix else p.name,
+                              dir=str(p.parent), input=item.path)
+    except (KeyError, IndexError, ValueError) as err:
+        raise UsageError(f"--gt pattern '{pattern}': {err!r} (use {{name}}, {{stem}}, {{dir}}, "
+                         "{input})") from None
+    return os.path.abspath(path)
+
+
+def _record(item: Input, job: Dict[str, Any], outcome: dict, gt_path: Optional[str],
+            config_path: Optional[str]) -> dict:
+    frames, seconds = outcome.get("frames"), outcome.get("seconds")
+    fps = frames / seconds if frames and seconds else None
+    return {"input": item.path, "name": item.name, "status": outcome["status"],
+            "error": outcome.get("error"), "parameters": job, "seed": job["seed"],
+            "config_file": config_path, "frames": frames, "seconds": seconds, "fps": fps,
+            "outputs": {"tracks": TRACKS if outcome["status"] == "ok" else None,
+                        "render": RENDER if job["render"] and outcome["status"] == "ok" else None},
+            "gt": gt_path, "metrics": outcome.get("metrics"),
+            "vtrack_version": outcome.get("vtrack_version"), "host": outcome.get("host"),
+            "pid": outcome.get("pid"), "worker": outcome.get("worker"),
+            "finished": time.strftime("%Y-%m-%dT%H:%M:%S%z")}
+
+
+def _summary_row(run: dict, with_metrics: bool) -> List[str]:
+    def number(v, fmt):
+        return "" if v is None else format(v, fmt)
+
+    row = [run["input"], run["name"], run["status"], number(run.get("frames"), "d"),
+           number(run.get("seconds"), ".3f"), number(run.get("fps"), ".2f"), run.get("error") or ""]
+    if with_metrics:
+        metrics = run.get("metrics") or {}
+        row += [number(metrics.get(k), ".6f") for k in METRIC_COLUMNS]
+    return row
+
+
+class _Summary:
+    """DIR/summary.csv over `runs` (a list filled in as results arrive), rewritten atomically at
+    most once a second and by :meth:`write` (a rewrite costs O(inputs))."""
+
+    def __init__(self, path: Path, runs: Sequence[Optional[dict]], with_metrics: bool):
+        self.path, self.runs, self.with_metrics = path, runs, with_metrics
+        self.write()
+
+    def changed(self) -> None:
+        if time.monotonic() - self.written > 1.0:
+            self.write()
+
+    def write(self) -> None:
+        text = io.StringIO()
+        writer = csv.writer(text, lineterminator="\n")
+        writer.writerow(SUMMARY_COLUMNS + (METRIC_COLUMNS if self.with_metrics else ()))
+        for run in self.runs:
+            if run is not None:
+                writer.writerow(_summary_row(run, self.with_metrics))
+        with atomic_open(self.path) as f:
+            f.write(text.getvalue())
+        self.written = time.monotonic()
+
+
+class _Progress:
+    """A live bar over inputs: tqdm when installed, else one stderr line (rewritten in place on a
+    terminal)."""
+
+    def __init__(self, total: int, done: int, enabled: bool):
+        self.total, self.done, self.failed, self.frames = total, done, 0, 0
+        self.enabled, self.start, self.bar = enabled, time.perf_counter(), None
+        if enabled:
+            try:
+                from tqdm import tqdm  # noqa: PLC0415
+            except ImportError:
+                tqdm = None
+            if tqdm is not None:
+                self.bar = tqdm(total=total, initial=done, unit="input", desc="vtrack batch",
+                                file=sys.stderr)
+            else:
+                self.tty = sys.stderr.isatty()
+                self._line()
+
+    def _stats(self) -> str:
+        rate = self.frames / max(time.perf_counter() - self.start, 1e-9)
+        return f"{self.failed} failed, {self.frames} frames, {rate:.1f} frames/s"
+
+    def _line(self) -> None:
+        end = "" if self.tty else "\n"
+        print(f"{chr(13) if self.tty else ''}vtrack batch: {self.done}/{self.total} inputs "
+              f"({self._stats()})", end=end, file=sys.stderr, flush=True)
+
+    def update(self, run: dict) -> None:
+        self.done += 1
+        self.failed += run["status"] != "ok"
+        self.frames += run.get("frames") or 0
+        if not self.enabled:
+            return
+        if self.bar is not None:
+            self.bar.set_postfix_str(self._stats(), refresh=False)
+            self.bar.update(1)
+        else:
+            self._line()
+
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.close()
+        elif self.enabled and self.tty:
+            print(file=sys.stderr)
+
+
+def _start_cluster(workers: Optional[int], scheduler: Optional[str], quiet: bool):
+    """(client, cluster-or-None): a local cluster of one single-threaded worker process per core
+    (`workers` to choose), or a connection to the scheduler at `scheduler`."""
+    import logging  # noqa: PLC0415
+
+    from distributed import Client, LocalCluster  # noqa: PLC0415
+
+    if scheduler is not None:
+        return Client(scheduler), None
+    dashboard = ":8787" if _has_bokeh() else None
+    if workers is None:
+        workers = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
+    cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                           dashboard_address=dashboard,
+                           silence_logs=logging.ERROR if quiet else logging.WARNING)
+    client = Client(cluster)
+    client.register_plugin(_ignore_sigint_plugin())
+    return client, cluster
+
+
+def _ignore_sigint_plugin():
+    """Makes our local workers ignore SIGINT. Ctrl-C reaches the whole process group; the client
+    handles it (cancels, stops the cluster, removes temporary files), so the workers need not
+    -- otherwise each prints a KeyboardInterrupt traceback as it dies. Registered with the
+    scheduler, so workers restarted after a crash get it too."""
+    from distributed.diagnostics.plugin import WorkerPlugin  # noqa: PLC0415
+
+    class IgnoreSigint(WorkerPlugin):
+        name = "vtrack-batch-ignore-sigint"
+
+        def setup(self, worker):
+            import signal  # noqa: PLC0415
+            import threading  # noqa: PLC0415
+
+            if threading.current_thread() is threading.main_thread():
+                signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+    return IgnoreSigint()
+
+
+def _has_bokeh() -> bool:
+    """Whether Dask's dashboard can run here (it needs bokeh)."""
+    import importlib.util  # noqa: PLC0415
+
+    return importlib.util.find_spec("bokeh") is not None
+
+
+def _describe_task_error(err: BaseException) -> str:
+    name = type(err).__name__
+    if name == "KilledWorker":
+        return ("KilledWorker: the worker process died on every attempt at this input "
+                "(distributed.scheduler.allowed-failures)")
+    return f"{name}: {err}"
+
+
+def track_many(inputs, out_dir: PathLike, client=None, *, method: str = "mb",
+               detector: Optional[str] = None, config: Optional[PathLike] = None,
+               seed: Optional[int] = None, render: bool = False, gt: Optional[str] = None,
+               force: bool = False, workers: Optional[int] = None,
+               scheduler: Optional[str] = None, progress: bool = False, **params) -> List[dict]:
+    """Track every input (see :func:`expand_inputs`) into ``out_dir/<name>/`` on Dask.
+
+    `client` is a ``dask.distributed.Client`` to use; without one, a local cluster of `workers`
+    single-threaded processes (default: one per core) is started and stopped, or `scheduler`
+    (``tcp://host:8786``) is connected to. Other keyword arguments are tracking parameters, the
+    names ``vtrack track --set`` takes. Returns each input's run.json record, in input order
+    (``skipped`` True for inputs found complete). Raises :class:`UsageError` (a ValueError) or
+    the TypeError / ValueError of a bad parameter before anything runs; KeyboardInterrupt after
+    cleaning up.
+    """
+    items = expand_inputs(inputs)
+    job = make_job(method, detector, config, seed, render, **params)
+    if gt is not None:
+        from .evaluate import _trackeval  # noqa: PLC0415
+
+        try:
+            _trackeval()
+        except ImportError as err:
+            raise UsageError(f"--gt: {err}") from None
+    gt_paths = [_gt_path(gt, item) for item in items]
+    check_job(job)
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    config_path = os.path.abspath(config) if config is not None else None
+
+    runs, todo = _plan(items, job, out, gt_paths, force)
+    summary = _Summary(out / SUMMARY, runs, gt is not None)
+    bar = _Progress(len(items), len(items) - len(todo), progress)
+    own = client is None and bool(todo)
+    cluster = None
+    if own:
+        client, cluster = _start_cluster(workers, scheduler, quiet=progress)
+    futures: Dict[Any, int] = {}
+    try:
+        if todo and progress and "dashboard" in client.scheduler_info().get("services", {}) and (
+                cluster is None or _has_bokeh()):
+            print(f"vtrack batch: Dask dashboard at {client.dashboard_link}", file=sys.stderr)
+        for i in todo:
+            future = client.submit(run_input, items[i].path, str(out / items[i].name), job,
+                                   gt_paths[i], key=f"vtrack-track-{uuid.uuid4().hex}", pure=False)
+            futures[future] = i
+        _collect(futures, items, job, out, gt_paths, config_path, runs, summary, bar)
+    except BaseException:
+        for future in futures:
+            future.cancel()
+        if own:
+            _stop(client, cluster)
+            own = False
+            if scheduler is None:  # our own workers are gone: nothing writes there any more
+                for i in futures.values():
+                    _remove_leftovers(out / items[i].name)
+        raise
+    finally:
+        summary.write()
+        bar.close()
+        if own:
+            _stop(client, cluster)
+    return runs
+
+
+def _plan(items: Sequence[Input], job: Dict[str, Any], out: Path,
+          gt_paths: Sequence[Optional[str]], force: bool) -> Tuple[List[Optional[dict]], List[int]]:
+    """(runs, todo): the run.json records of the complete inputs (None for the others) and the
+    indices of the inputs to track. The latter lose their run.json: from here until the new one,
+    their folders are incomplete whatever they hold."""
+    runs: List[Optional[dict]] = [None] * len(items)
+    todo = []
+    for i, item in enumerate(items):
+        folder = out / item.name
+        run = None if force else _read_run(folder)
+        if not _is_complete(run, item, job, folder):
+            (folder / RUN).unlink(missing_ok=True)
+            todo.append(i)
+            continue
+        if gt_paths[i] is not None and run.get("gt") != gt_paths[i]:  # metrics asked for later
+            from .mot import read_mot  # noqa: PLC0415
+
+            run["metrics"], run["error"] = _metrics(read_mot(folder / TRACKS), gt_paths[i])
+            run["gt"] = gt_paths[i]
+            _write_json(folder / RUN, run)
+        runs[i] = dict(run, skipped=True)
+    return runs, todo
+
+
+def _collect(futures: Dict[Any, int], items, job, out: Path, gt_paths, config_path, runs,
+             summary: "_Summary", bar: _Progress) -> None:
+    """Writes each task's run.json as it finishes (removing it from `futures`)."""
+    from distributed import as_completed  # noqa: PLC0415
+
+    for future in as_completed(list(futures)):
+        i = futures.pop(future)
+        if future.status == "error":  # the task did not return: its worker died every time
+            outcome = {"status": "failed", "error": _describe_task_error(future.exception())}
+        else:
+            outcome = future.result()
+        folder = out / items[i].name
+        folder.mkdir(parents=True, exist_ok=True)
+        if outcome["status"] != "ok":  # a failure leaves no outputs (as `vtrack track`)
+            for name in (TRACKS, RENDER):
+                (folder / name).unlink(missing_ok=True)
+        runs[i] = _record(items[i], job, outcome, gt_paths[i], config_path)
+        _write_json(folder / RUN, runs[i])
+        summary.changed()
+        bar.update(runs[i])
+
+
+def _stop(client, cluster) -> None:
+    client.close()
+    if cluster is not None:
+        cluster.close()
+
+
+# ---- command line --------------------------------------------------------------------------------
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):  # argparse's usage errors, in vtrack's form (exit 2)
+        self.print_usage(sys.stderr)
+        print(f"vtrack: error: {message}", file=sys.stderr)
+        sys.exit(EXIT_USAGE)
+
+
+def _parser() -> argparse.ArgumentParser:
+    prog = os.environ.get("VTRACK_PROG", "python -m vtrack.batch")
+    p = _Parser(prog=prog, description=(
+        "Track many videos at once on Dask: one task per input, a local cluster of one worker "
+        "process per core unless --scheduler names a cluster. Results go to DIR/<name>/ "
+        "(tracks.txt, run.json, render.mp4 with --render) and DIR/summary.csv. Re-running skips "
+        "complete inputs. Exit status: 0 all ok, 1 some input failed, 2 usage error, "
+        "130 interrupted."))
+    p.add_argument("inputs", nargs="+", metavar="INPUT",
+                   help="video file, image folder, glob pattern (quote it) or a .txt/.lst/.list "
+                        "file listing them, one per line")
+    p.add_argument("--out", required=True, metavar="DIR", help="output folder")
+    p.add_argument("--method", default="mb", choices=METHODS, help="tracker (default mb)")
+    p.add_argument("--detector", choices=DETECTORS, help="detector of the box trackers")
+    p.add_argument("--config", metavar="FILE", help="parameters, YAML or JSON (as vtrack track)")
+    p.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                   help="one parameter, overriding the config file (repeatable)")
+    p.add_argument("--seed", type=int, help="random seed (default: the config's, else 0)")
+    p.add_argument("--render", action="store_true", help="also write DIR/<name>/render.mp4")
+    p.add_argument("--gt", metavar="PATTERN",
+                   help="ground truth per input, e.g. 'MOT15/train/{name}/gt/gt.txt' "
+                        "({name}, {stem}, {dir}, {input}); adds HOTA, MOTA, IDF1 to the summary")
+    where = p.add_mutually_exclusive_group()
+    where.add_argument("--workers", type=int, metavar="N",
+                       help="local worker processes, one thread each (default: one per core)")
+    where.add_argument("--scheduler", metavar="ADDRESS",
+                       help="run on an existing Dask cluster, e.g. tcp://host:8786")
+    p.add_argument("--force", action="store_true", help="redo inputs that are complete")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    return p
+
+
+def main(argv: Optional[Sequence[str]] = None) -> int:
+    args = _parser().parse_args(argv)
+
+    def fail(message: str, status: int) -> int:
+        print(f"vtrack: error: {message}", file=sys.stderr)
+        return status
+
+    try:
+        import distributed  # noqa: F401, PLC0415
+    except ImportError:
+        return fail("vtrack batch needs Dask: pip install 'vtrack[batch]' "
+                    "(or pip install 'dask[distributed]')", EXIT_USAGE)
+    if args.workers is not None and args.workers < 1:
+        return fail(f"--workers must be >= 1, got {args.workers}", EXIT_USAGE)
+    try:
+        params = dict(parse_setting(s) for s in args.set)
+        runs = track_many(args.inputs, args.out, method=args.method, detector=args.detector,
+                          config=args.config, seed=args.seed, render=args.render, gt=args.gt,
+                          force=args.force, workers=args.workers, scheduler=args.scheduler,
+                          progress=not args.quiet, **params)
+    except KeyboardInterrupt:
+        done = sum(1 for _ in _finished(args.out))
+        return fail(f"interrupted; {args.out} holds {done} complete input(s): run the same "
+                    "command again to do the rest", EXIT_INTERRUPTED)
+    except (UsageError, TypeError, ValueError) as err:
+        return fail(str(err), EXIT_USAGE)
+    except OSError as err:
+        return fail(str(err), EXIT_FAILED)
+    failed = [r for r in runs if r["status"] != "ok"]
+    skipped = sum(1 for r in runs if r.get("skipped"))
+    print(f"vtrack batch: {len(runs) - len(failed)} of {len(runs)} inputs ok ({skipped} already "
+          f"complete), {len(failed)} failed; summary in {Path(args.out) / SUMMARY}")
+    for r in failed:
+        print(f"vtrack batch: {r['name']}: {r['error']}", file=sys.stderr)
+    return EXIT_FAILED if failed else EXIT_OK
+
+
+def _finished(out_dir: PathLike):
+    for entry in Path(out_dir).iterdir() if Path(out_dir).is_dir() else ():
+        run = _read_run(entry) if entry.is_dir() else None
+        if run is not None and run.get("status") == "ok":
+            yield entry.name
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,380 @@
+"""vtrack batch: many videos on a real local Dask cluster (no mocks), checked against sequential
+`vtrack track` runs of the same inputs, byte for byte."""
+
+import csv
+import json
+import os
+import signal
+import subprocess
+import sys
+import threading
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import vtrack
+from vtrack.evaluate import evaluate
+from vtrack.mot import read_mot, write_mot
+from vtrack.synthetic import make_scene
+
+distributed = pytest.importorskip("distributed")
+cv2 = pytest.importorskip("cv2")
+
+from vtrack import batch  # noqa: E402
+
+# People of the 160 x 120 scenes are 8-12 x 20-30 px; the tracker's size prior defaults are for
+# PETS09 at 768 x 576. A short background period lets the KDE learn within the clip. Given as
+# --set names, so both the tracker's and the background's parameters are routed.
+SETTINGS = dict(width_mean=10.0, width_std=2.0, width_min=5.0, width_max=16.0, height_mean=25.0,
+                height_std=4.0, height_min=14.0, height_max=36.0, box_scale_w=1.0,
+                box_scale_h=1.0, box_offset_x=0.0, box_offset_y=0.0, period=2)
+SEED = 3
+FRAMES = 40
+
+
+def _write_scene(path, seed, frames=FRAMES):
+    scene = make_scene(160, 120, n_frames=frames, n_people=2, seed=seed, size=((8, 12), (20, 30)),
+                       speed=(3.0, 5.0), illumination_amplitude=0.0)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    writer = cv2.VideoWriter(str(path), cv2.VideoWriter_fourcc(*"MJPG"), 10.0, (160, 120))
+    for k in range(len(scene)):
+        writer.write(scene.frame(k))
+    writer.release()
+    return scene
+
+
+@pytest.fixture(scope="module")
+def data(tmp_path_factory):
+    """clips/s1.avi and s2.avi, an image folder frames/s4/img1 (MOTChallenge layout), a truncated
+    clips/corrupt.avi, ground truth gt/<name>/gt.txt."""
+    root = tmp_path_factory.mktemp("batch-data")
+    scenes = {}
+    for i, name in enumerate(["s1", "s2"]):
+        scenes[name] = _write_scene(root / "clips" / f"{name}.avi", seed=10 + i)
+    s4 = make_scene(160, 120, n_frames=FRAMES, n_people=2, seed=20, size=((8, 12), (20, 30)),
+                    speed=(3.0, 5.0), illumination_amplitude=0.0)
+    (root / "frames" / "s4" / "img1").mkdir(parents=True)
+    for k in range(len(s4)):
+        cv2.imwrite(str(root / "frames" / "s4" / "img1" / f"{k + 1:06d}.png"), s4.frame(k))
+    scenes["s4"] = s4
+    good = (root / "clips" / "s1.avi").read_bytes()
+    (root / "clips" / "corrupt.avi").write_bytes(good[: len(good) // 2])
+    for name, scene in scenes.items():
+        (root / "gt" / name).mkdir(parents=True)
+        write_mot(root / "gt" / name / "gt.txt", scene.gt_rows())
+    return root, scenes
+
+
+def _cli_reference(vtrack_cli, video, out):
+    sets = [a for k, v in SETTINGS.items() for a in ("--set", f"{k}={v}")]
+    result = vtrack_cli("track", video, "--out", out, "--seed", SEED, *sets)
+    assert result.returncode == 0, result.stderr
+    return Path(out).read_bytes()
+
+
+@pytest.fixture(scope="module")
+def references(data, vtrack_cli, tmp_path_factory):
+    """Sequential `vtrack track` runs of the good inputs: name -> bytes of tracks.txt."""
+    root, _ = data
+    out = tmp_path_factory.mktemp("reference")
+    videos = {"s1": root / "clips" / "s1.avi", "s2": root / "clips" / "s2.avi",
+              "s4": root / "frames" / "s4" / "img1"}
+    return {name: _cli_reference(vtrack_cli, v, out / f"{name}.txt") for name, v in videos.items()}
+
+
+@pytest.fixture(scope="module")
+def client():
+    """A real local cluster: 2 worker processes of one thread each."""
+    cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                       dashboard_address=None)
+    with distributed.Client(cluster) as c:
+        yield c
+    cluster.close()
+
+
+def _summary(out):
+    with open(out / "summary.csv", newline="") as f:
+        return list(csv.reader(f))
+
+
+def _mtimes(folder):
+    return {p: p.stat().st_mtime_ns for p in Path(folder).rglob("*") if p.is_file()}
+
+
+def _leftovers(folder):
+    return [p for p in Path(folder).rglob("*")
+            if p.name.endswith(".tmp") or ".partial" in p.name or p.name.startswith(".render.")]
+
+
+def test_batch_equals_sequential_cli_and_reports_bad_inputs(data, references, client, tmp_path):
+    root, scenes = data
+    listing = root / "inputs.txt"
+    listing.write_text("# clips, an image folder, and a file that is not there\n"
+                       "clips/*.avi\n\nframes/s4/img1\nmissing.avi\n")
+    out = tmp_path / "out"
+    runs = batch.track_many([listing], out, client=client, seed=SEED,
+                            gt=str(root / "gt" / "{name}" / "gt.txt"), **SETTINGS)
+    names = [r["name"] for r in runs]
+    assert names == ["corrupt", "s1", "s2", "s4", "missing"]  # the list's order, globs sorted
+    rows = _summary(out)
+    assert rows[0] == ["input", "name", "status", "frames", "seconds", "fps", "error",
+                       "HOTA", "MOTA", "IDF1"]
+    by_name = {r[1]: dict(zip(rows[0], r)) for r in rows[1:]}
+    assert [r[1] for r in rows[1:]] == names
+    for name in ("s1", "s2", "s4"):
+        row, folder = by_name[name], out / name
+        assert row["status"] == "ok" and row["error"] == "", row
+        assert (folder / "tracks.txt").read_bytes() == references[name], name
+        assert int(row["frames"]) == FRAMES
+        assert float(row["fps"]) == pytest.approx(FRAMES / float(row["seconds"]), rel=0.01)
+        # The metric columns are TrackEval's on the written tracks and the scene's exact truth.
+        expected = evaluate(scenes[name].gt_rows(), read_mot(folder / "tracks.txt"))
+        for metric in ("HOTA", "MOTA", "IDF1"):
+            assert float(row[metric]) == pytest.approx(expected[metric], abs=1e-6), (name, metric)
+        run = json.loads((folder / "run.json").read_text())
+        assert run["status"] == "ok" and run["seed"] == SEED and run["frames"] == FRAMES
+        assert run["vtrack_version"] == vtrack.__version__
+        assert run["parameters"]["params"] == SETTINGS and run["parameters"]["method"] == "mb"
+        assert run["input"] == str(root / ("frames/s4/img1" if name == "s4" else f"clips/{name}.avi"))
+    # The tracker found people (the comparison above is not of empty files).
+    assert float(by_name["s1"]["MOTA"]) > 0.3, by_name["s1"]
+    for name, message in (("corrupt", "frame"), ("missing", "no such file")):
+        row = by_name[name]
+        assert row["status"] == "failed" and message in row["error"], row
+        assert row["HOTA"] == "" and row["frames"] == ""
+        run = json.loads((out / name / "run.json").read_text())
+        assert run["status"] == "failed" and message in run["error"]
+        assert not (out / name / "tracks.txt").exists()
+    assert _leftovers(out) == []
+
+
+def test_rerun_skips_complete_redoes_failed_and_changed(data, references, client, tmp_path):
+    root, _ = data
+    clips = tmp_path / "clips"
+    clips.mkdir()
+    for name in ("s1", "s2"):
+        os.symlink(root / "clips" / f"{name}.avi", clips / f"{name}.avi")
+    (clips / "bad.avi").write_bytes((root / "clips" / "corrupt.avi").read_bytes())
+    out = tmp_path / "out"
+    first = batch.track_many(str(clips / "*.avi"), out, client=client, seed=SEED, **SETTINGS)
+    assert [(r["name"], r["status"]) for r in first] == [("bad", "failed"), ("s1", "ok"),
+                                                         ("s2", "ok")]
+    before = _mtimes(out)
+    # The failed input is repaired (now a copy of s1): the re-run redoes it and only it.
+    (clips / "bad.avi").write_bytes((root / "clips" / "s1.avi").read_bytes())
+    time.sleep(0.01)
+    second = batch.track_many(str(clips / "*.avi"), out, client=client, seed=SEED, **SETTINGS)
+    assert [(r["name"], r["status"], bool(r.get("skipped"))) for r in second] == [
+        ("bad", "ok", False), ("s1", "ok", True), ("s2", "ok", True)]
+    after = _mtimes(out)
+    for name in ("s1", "s2"):
+        for file in ("tracks.txt", "run.json"):
+            assert after[out / name / file] == before[out / name / file], (name, file)
+    assert (out / "bad" / "tracks.txt").read_bytes() == references["s1"]
+    # A third run is a no-op: nothing but summary.csv is rewritten.
+    third = batch.track_many(str(clips / "*.avi"), out, client=client, seed=SEED, **SETTINGS)
+    assert all(r.get("skipped") for r in third)
+    changed = {p for p, t in _mtimes(out).items() if after.get(p) != t}
+    assert changed == {out / "summary.csv"}
+    # Other parameters make nothing complete; --force redoes complete inputs.
+    fourth = batch.track_many(str(clips / "s1.avi"), out, client=client, seed=SEED + 1,
+                              **SETTINGS)
+    assert not fourth[0].get("skipped") and fourth[0]["seed"] == SEED + 1
+    fifth = batch.track_many(str(clips / "s2.avi"), out, client=client, seed=SEED, force=True,
+                             **SETTINGS)
+    assert not fifth[0].get("skipped")
+    assert (out / "s2" / "tracks.txt").read_bytes() == references["s2"]
+
+
+def _sequential_bytes(video, folder):
+    """tracks.txt of a plain sequential run: vtrack.track_video then write_mot."""
+    path = folder / f"{Path(video).stem}.expected.txt"
+    tracker = {k: v for k, v in SETTINGS.items() if k != "period"}
+    write_mot(path, vtrack.track_video(video, seed=SEED, background={"period": 2}, **tracker))
+    return path.read_bytes()
+
+
+def _pid_writing(pids, path):
+    """Which of `pids` has `path` open (from /proc/PID/fd), or None."""
+    for pid in pids:
+        try:
+            fds = os.listdir(f"/proc/{pid}/fd")
+        except OSError:
+            continue
+        for fd in fds:
+            try:
+                if os.readlink(f"/proc/{pid}/fd/{fd}") == str(path):
+                    return pid
+            except OSError:
+                pass
+    return None
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="finds the worker in /proc")
+def test_worker_killed_mid_task_is_retried_and_outputs_are_whole(client, tmp_path):
+    """A worker process is SIGKILLed while it writes an input's render; Dask reruns the task on
+    a live worker and every output is whole: the tracks equal a sequential run's, the render has
+    every frame, no temporary file is left."""
+    videos = [tmp_path / "clips" / f"long{i}.avi" for i in range(2)]
+    for i, v in enumerate(videos):
+        _write_scene(v, seed=30 + i, frames=150)
+    out = tmp_path / "out"
+    pids = set(client.run(os.getpid).values())
+    result = {}
+    worker = threading.Thread(target=lambda: result.setdefault("runs", batch.track_many(
+        [str(v) for v in videos], out, client=client, seed=SEED, render=True, **SETTINGS)))
+    worker.start()
+    killed = None
+    deadline = time.monotonic() + 60
+    while killed is None and time.monotonic() < deadline and worker.is_alive():
+        for partial in out.glob("*/.render.*"):
+            pid = _pid_writing(pids, partial)
+            if pid is not None:
+                os.kill(pid, signal.SIGKILL)
+                killed = (pid, partial.parent.name)
+                break
+        time.sleep(0.005)
+    worker.join(120)
+    assert killed is not None, "no task was caught writing its render"
+    assert killed[0] not in set(client.run(os.getpid).values())
+    runs = {r["name"]: r for r in result["runs"]}
+    assert runs[killed[1]]["status"] == "ok" and runs[killed[1]]["pid"] != killed[0]
+    for v in videos:
+        name = v.stem
+        assert runs[name]["status"] == "ok", runs[name]
+        assert (out / name / "tracks.txt").read_bytes() == _sequential_bytes(v, tmp_path)
+        assert vtrack.probe_video(out / name / "render.mp4").frame_count == 150
+    assert _leftovers(out) == []
+
+
+def _python_batch(args):
+    """`python -m vtrack.batch ARGS` in a session of its own, with SIGINT's default disposition
+    (a shell running pytest in the background may have left it ignored)."""
+    return subprocess.Popen([sys.executable, "-m", "vtrack.batch", *map(str, args)],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            start_new_session=True,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+
+
+def test_ctrl_c_leaves_whole_files_and_the_cli_rerun_finishes(client, vtrack_cli, tmp_path):
+    """Ctrl-C (SIGINT to the process group, as a terminal sends it) stops a run on its own local
+    cluster with tasks in flight: exit 130, no temporary or partial file, every tracks.txt whole.
+    `vtrack batch` (the C++ CLI handing over to Python) re-runs the command on an existing
+    cluster (--scheduler): it does the rest only, and exits 1 because one input is missing."""
+    clips = tmp_path / "clips"
+    for i in range(4):
+        _write_scene(clips / f"c{i}.avi", seed=40 + i, frames=120)
+    out = tmp_path / "out"
+    sets = [a for k, v in SETTINGS.items() for a in ("--set", f"{k}={v}")]
+    args = [clips / "*.avi", tmp_path / "missing.avi", "--out", out, "--workers", 2,
+            "--seed", SEED, "--quiet", *sets]
+    proc = _python_batch(args)
+    deadline = time.monotonic() + 60
+    while not list(out.glob("*/run.json")) and time.monotonic() < deadline:
+        time.sleep(0.01)
+    os.killpg(proc.pid, signal.SIGINT)
+    _, stderr = proc.communicate(timeout=60)
+    assert proc.returncode == 130, stderr
+    assert "vtrack: error: interrupted" in stderr
+    assert _leftovers(out) == []
+    complete = {p.parent.name for p in out.glob("*/run.json")
+                if json.loads(p.read_text())["status"] == "ok"}
+    assert 1 <= len(complete) < 4, complete
+
+    expected = {f"c{i}": _sequential_bytes(clips / f"c{i}.avi", tmp_path) for i in range(4)}
+    for tracks in out.glob("*/tracks.txt"):  # also those of tasks cut short: whole or absent
+        assert tracks.read_bytes() == expected[tracks.parent.name], tracks
+    summary = _summary(out)
+    assert {r[1] for r in summary[1:] if r[2] == "ok"} == complete
+    before = _mtimes(out)
+
+    args[args.index("--workers"):args.index("--workers") + 2] = ["--scheduler", client.scheduler.address]
+    result = vtrack_cli("batch", *args)
+    assert result.returncode == 1, result.stderr
+    assert "missing" in result.stderr
+    summary = _summary(out)
+    assert [(r[1], r[2]) for r in summary[1:]] == [(f"c{i}", "ok") for i in range(4)] + [
+        ("missing", "failed")]
+    for name in complete:
+        assert _mtimes(out)[out / name / "run.json"] == before[out / name / "run.json"]
+    for name, tracks in expected.items():
+        assert (out / name / "tracks.txt").read_bytes() == tracks, name
+    assert _leftovers(out) == []
+
+
+def test_usage_errors_exit_2_before_anything_runs(data, capsys, tmp_path):
+    root, _ = data
+    video = root / "clips" / "s1.avi"
+    out = tmp_path / "out"
+    cases = [
+        ((video,), "--out"),
+        ((video, "--out", out, "--set", "no_such=1"), "no_such"),
+        ((video, "--out", out, "--set", "sigma_x=-1"), "sigma_x"),
+        ((video, "--out", out, "--set", "novalue"), "name=value"),
+        ((video, "--out", out, "--method", "nope"), "--method"),
+        ((tmp_path / "*.none", "--out", out), "matches nothing"),
+        ((video, "--out", out, "--workers", "0"), "--workers"),
+        ((video, "--out", out, "--gt", "{nope}/gt.txt"), "--gt"),
+        ((video, "--out", out, "--workers", "2", "--scheduler", "tcp://x:1"), "--scheduler"),
+    ]
+    for args, message in cases:
+        try:
+            status = batch.main([str(a) for a in args])
+        except SystemExit as exit:  # argparse
+            status = exit.code
+        err = capsys.readouterr().err
+        assert status == 2, (args, err)
+        assert "vtrack: error: " in err and message in err, (args, err)
+    assert not out.exists()  # found before anything ran
+
+
+def test_cli_hands_batch_to_python(vtrack_cli, data, tmp_path):
+    """`vtrack batch` execs `python -m vtrack.batch` (help and errors included), and says what
+    is missing when it cannot: no interpreter with vtrack, or no Dask."""
+    video = data[0] / "clips" / "s1.avi"
+    out = tmp_path / "out"
+    help_text = vtrack_cli("batch", "--help")
+    assert help_text.returncode == 0 and help_text.stdout.startswith("usage: vtrack batch")
+    assert "--scheduler" in help_text.stdout
+    result = vtrack_cli("batch", video, "--out", out, "--set", "no_such=1")
+    assert result.returncode == 2 and "vtrack: error: " in result.stderr and "no_such" in result.stderr
+    env = dict(os.environ, VTRACK_PYTHON=str(tmp_path / "no-python"))
+    exe = Path(sys.executable).parent / "vtrack"
+    result = subprocess.run([exe, "batch", video, "--out", out], capture_output=True, text=True,
+                            env=env, timeout=60)
+    assert result.returncode == 2 and "vtrack: error: " in result.stderr
+    assert "no-python: cannot run it" in result.stderr and "VTRACK_PYTHON" in result.stderr
+    code = ("import runpy, sys; sys.modules['distributed'] = None; "
+            "runpy.run_module('vtrack.batch', run_name='__main__')")
+    result = subprocess.run([sys.executable, "-c", code, str(video), "--out", str(out)],
+                            capture_output=True, text=True, timeout=60)
+    assert result.returncode == 2 and "pip install 'vtrack[batch]'" in result.stderr
+    assert not out.exists()
+
+
+def test_inputs_names_are_unique_and_independent_of_order(tmp_path):
+    for rel in ("a/cam.avi", "b/cam.avi", "b/cam.mp4", "x/a__cam.avi", "MOT/SEQ-02/img1/1.png",
+                "solo.avi"):
+        (tmp_path / rel).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / rel).write_bytes(b"")
+    listing = tmp_path / "list.lst"
+    listing.write_text("a/cam.avi\nb/cam.*\n# comment\n\nMOT/*/img1\nsolo.avi\n./solo.avi\n")
+    items = batch.expand_inputs([listing])
+    names = {Path(i.path).relative_to(tmp_path).as_posix(): i.name for i in items}
+    assert names == {"a/cam.avi": "a__cam", "b/cam.avi": "b__cam", "b/cam.mp4": "cam.mp4",
+                     "MOT/SEQ-02/img1": "SEQ-02", "solo.avi": "solo"}
+    # A name another input's path also gives ("a__cam"): still all different, whatever the order.
+    paths = [str(tmp_path / p) for p in [*names, "x/a__cam.avi"]]
+    forward = {i.path: i.name for i in batch.expand_inputs(paths)}
+    assert len(set(forward.values())) == len(paths)
+    assert {i.path: i.name for i in batch.expand_inputs(paths[::-1])} == forward
+    with pytest.raises(batch.UsageError, match="matches nothing"):
+        batch.expand_inputs([str(tmp_path / "*.mkv")])
+    assert batch.parse_setting("a=1") == ("a", 1)
+    assert batch.parse_setting("a=1.5") == ("a", 1.5)
+    assert batch.parse_setting("a=true") == ("a", True)
+    assert batch.parse_setting("resampling=residual") == ("resampling", "residual")
+    with pytest.raises(batch.UsageError):
+        batch.parse_setting("novalue")
