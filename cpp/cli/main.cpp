@@ -12,6 +12,7 @@
 
 #include <unistd.h>
 
+#include "batch_handoff.hpp"
 #include "vtrack/apps/background_subtraction.hpp"
 #include "vtrack/apps/detection_file.hpp"
 #include "vtrack/apps/parameters.hpp"
@@ -380,6 +381,12 @@ int run_track(const std::vector<std::string>& args) {
   return o.method == "mb" ? run_track_mb(o) : run_track_glmb(o);
 }
 
+// `vtrack batch` is Python (vtrack.batch, on Dask): this execs the interpreter vtrack is
+// installed in and returns only when there is none.
+int run_batch(const std::vector<std::string>& args) {
+  throw UsageError(vtrack::cli::exec_python_batch(args));
+}
+
 const std::vector<Command>& commands() {
   static const std::vector<Command> table = {
       {"info", "print frame count, frame size and frame rate of a video or image folder",
@@ -430,6 +437,8 @@ const std::vector<Command>& commands() {
        "                   with gibbs_ranking -- Murty's ranking is deterministic)\n"
        "  --set name=value override one parameter of a config section (repeatable)",
        run_track},
+      {"batch", "track many videos at once on Dask, locally or on a cluster (vtrack.batch)",
+       "vtrack batch INPUTS... --out DIR [options]   (vtrack batch --help lists them)", run_batch},
   };
   return table;
 }
@@ -463,7 +472,7 @@ int main(int argc, char** argv) {
     for (const auto& command : commands()) {
       if (first != command.name) continue;
       std::vector<std::string> rest(args.begin() + 1, args.end());
-      if (wants_help(rest)) {
+      if (wants_help(rest) && std::string(command.name) != "batch") {  // batch: Python's help
         std::cout << "usage: " << command.usage << "\n\n" << command.summary << "\n";
         return 0;
       }
