@@ -11,7 +11,6 @@ import threading
 import time
 from pathlib import Path
 
-import numpy as np
 import pytest
 
 import vtrack
@@ -173,8 +172,8 @@ def test_rerun_skips_complete_redoes_failed_and_changed(data, references, client
         for file in ("tracks.txt", "run.json"):
             assert after[out / name / file] == before[out / name / file], (name, file)
     assert (out / "bad" / "tracks.txt").read_bytes() == references["s1"]
-    # A third run is a no-op: nothing but summary.csv is rewritten.
-    third = batch.track_many(str(clips / "*.avi"), out, client=client, seed=SEED, **SETTINGS)
+    # A third run is a no-op: nothing but summary.csv is rewritten (and no cluster is started).
+    third = batch.track_many(str(clips / "*.avi"), out, seed=SEED, **SETTINGS)
     assert all(r.get("skipped") for r in third)
     changed = {p for p, t in _mtimes(out).items() if after.get(p) != t}
     assert changed == {out / "summary.csv"}
@@ -186,6 +185,24 @@ def test_rerun_skips_complete_redoes_failed_and_changed(data, references, client
                              **SETTINGS)
     assert not fifth[0].get("skipped")
     assert (out / "s2" / "tracks.txt").read_bytes() == references["s2"]
+
+
+def test_config_file_is_read_as_vtrack_track_reads_it(data, vtrack_cli, client, tmp_path):
+    """The same YAML config (seed, background and tracker sections) through vtrack track and
+    through a batch: the same bytes; --set overrides the file in both."""
+    video = data[0] / "clips" / "s2.avi"
+    config = tmp_path / "params.yml"
+    tracker = {k: v for k, v in SETTINGS.items() if k != "period"}
+    config.write_text("%YAML:1.0\nseed: 5\nbackground:\n  period: 2\n  n_samples: 8\n"
+                      "tracker:\n" + "".join(f"  {k}: {v}\n" for k, v in tracker.items()))
+    reference = tmp_path / "reference.txt"
+    result = vtrack_cli("track", video, "--out", reference, "--config", config, "--set",
+                        "delta_f=0.2")
+    assert result.returncode == 0, result.stderr
+    runs = batch.track_many([video], tmp_path / "out", client=client, config=config, delta_f=0.2)
+    assert runs[0]["status"] == "ok" and runs[0]["seed"] == 5
+    assert runs[0]["parameters"]["config"]["background"] == {"period": 2, "n_samples": 8}
+    assert (tmp_path / "out" / "s2" / "tracks.txt").read_bytes() == reference.read_bytes()
 
 
 def _sequential_bytes(video, folder):
@@ -270,24 +287,27 @@ def test_ctrl_c_leaves_whole_files_and_the_cli_rerun_finishes(client, vtrack_cli
     sets = [a for k, v in SETTINGS.items() for a in ("--set", f"{k}={v}")]
     args = [clips / "*.avi", tmp_path / "missing.avi", "--out", out, "--workers", 2,
             "--seed", SEED, "--quiet", *sets]
+    def complete():
+        return {p.parent.name for p in out.glob("*/run.json")
+                if json.loads(p.read_text())["status"] == "ok"}
+
     proc = _python_batch(args)
     deadline = time.monotonic() + 60
-    while not list(out.glob("*/run.json")) and time.monotonic() < deadline:
+    while not complete() and time.monotonic() < deadline:  # (missing.avi fails at once)
         time.sleep(0.01)
     os.killpg(proc.pid, signal.SIGINT)
     _, stderr = proc.communicate(timeout=60)
     assert proc.returncode == 130, stderr
     assert "vtrack: error: interrupted" in stderr
     assert _leftovers(out) == []
-    complete = {p.parent.name for p in out.glob("*/run.json")
-                if json.loads(p.read_text())["status"] == "ok"}
-    assert 1 <= len(complete) < 4, complete
+    done = complete()
+    assert 1 <= len(done) < 4, done
 
     expected = {f"c{i}": _sequential_bytes(clips / f"c{i}.avi", tmp_path) for i in range(4)}
     for tracks in out.glob("*/tracks.txt"):  # also those of tasks cut short: whole or absent
         assert tracks.read_bytes() == expected[tracks.parent.name], tracks
     summary = _summary(out)
-    assert {r[1] for r in summary[1:] if r[2] == "ok"} == complete
+    assert {r[1] for r in summary[1:] if r[2] == "ok"} == done
     before = _mtimes(out)
 
     args[args.index("--workers"):args.index("--workers") + 2] = ["--scheduler", client.scheduler.address]
@@ -297,7 +317,7 @@ def test_ctrl_c_leaves_whole_files_and_the_cli_rerun_finishes(client, vtrack_cli
     summary = _summary(out)
     assert [(r[1], r[2]) for r in summary[1:]] == [(f"c{i}", "ok") for i in range(4)] + [
         ("missing", "failed")]
-    for name in complete:
+    for name in done:
         assert _mtimes(out)[out / name / "run.json"] == before[out / name / "run.json"]
     for name, tracks in expected.items():
         assert (out / name / "tracks.txt").read_bytes() == tracks, name

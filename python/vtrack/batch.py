@@ -51,15 +51,18 @@ frames). vtrack does not stitch.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import csv
 import glob
 import hashlib
 import io
 import json
 import os
+import signal
 import socket
 import sys
 import tempfile
+import threading
 import time
 import uuid
 from dataclasses import dataclass
@@ -430,8 +433,10 @@ class _Summary:
     """DIR/summary.csv over `runs` (a list filled in as results arrive), rewritten atomically at
     most once a second and by :meth:`write` (a rewrite costs O(inputs))."""
 
-    def __init__(self, path: Path, runs: Sequence[Optional[dict]], with_metrics: bool):
+    def __init__(self, path: Path, runs: Sequence[Optional[dict]], with_metrics: bool,
+                 interrupts: "_Interrupts"):
         self.path, self.runs, self.with_metrics = path, runs, with_metrics
+        self.interrupts = interrupts
         self.write()
 
     def changed(self) -> None:
@@ -445,7 +450,7 @@ class _Summary:
         for run in self.runs:
             if run is not None:
                 writer.writerow(_summary_row(run, self.with_metrics))
-        with atomic_open(self.path) as f:
+        with self.interrupts.protect(), atomic_open(self.path) as f:
             f.write(text.getvalue())
         self.written = time.monotonic()
 
@@ -582,23 +587,35 @@ def track_many(inputs, out_dir: PathLike, client=None, *, method: str = "mb",
     out.mkdir(parents=True, exist_ok=True)
     config_path = os.path.abspath(config) if config is not None else None
 
-    runs, todo = _plan(items, job, out, gt_paths, force)
-    summary = _Summary(out / SUMMARY, runs, gt is not None)
-    bar = _Progress(len(items), len(items) - len(todo), progress)
-    own = client is None and bool(todo)
+    with _Interrupts() as interrupts:
+        return _run(items, job, out, gt_paths, config_path, client, force, workers, scheduler,
+                    progress, gt is not None, interrupts)
+
+
+def _run(items, job, out: Path, gt_paths, config_path, client, force, workers, scheduler,
+         progress: bool, with_metrics: bool, interrupts: _Interrupts) -> List[dict]:
+    """track_many once its arguments are checked: skip what is complete, submit the rest,
+    record results as they come; on any exception cancel, stop our cluster, clean up."""
+    work = _Batch(items, job, out, gt_paths, config_path, interrupts)
+    todo = work.plan(force)
+    summary = _Summary(out / SUMMARY, work.runs, with_metrics, interrupts)
+    if not todo:
+        return work.runs
+    own = client is None
     cluster = None
     if own:
         client, cluster = _start_cluster(workers, scheduler, quiet=progress)
     futures: Dict[Any, int] = {}
+    bar = None
     try:
-        if todo and progress and "dashboard" in client.scheduler_info().get("services", {}) and (
-                cluster is None or _has_bokeh()):
-            print(f"vtrack batch: Dask dashboard at {client.dashboard_link}", file=sys.stderr)
+        if progress:
+            _announce(client, cluster, len(todo), len(items))
+        bar = _Progress(len(items), len(items) - len(todo), progress)
         for i in todo:
             future = client.submit(run_input, items[i].path, str(out / items[i].name), job,
                                    gt_paths[i], key=f"vtrack-track-{uuid.uuid4().hex}", pure=False)
             futures[future] = i
-        _collect(futures, items, job, out, gt_paths, config_path, runs, summary, bar)
+        work.collect(futures, summary, bar, client if cluster is not None else None)
     except BaseException:
         for future in futures:
             future.cancel()
@@ -611,56 +628,153 @@ def track_many(inputs, out_dir: PathLike, client=None, *, method: str = "mb",
         raise
     finally:
         summary.write()
-        bar.close()
+        if bar is not None:
+            bar.close()
         if own:
             _stop(client, cluster)
-    return runs
+    return work.runs
 
 
-def _plan(items: Sequence[Input], job: Dict[str, Any], out: Path,
-          gt_paths: Sequence[Optional[str]], force: bool) -> Tuple[List[Optional[dict]], List[int]]:
-    """(runs, todo): the run.json records of the complete inputs (None for the others) and the
-    indices of the inputs to track. The latter lose their run.json: from here until the new one,
-    their folders are incomplete whatever they hold."""
-    runs: List[Optional[dict]] = [None] * len(items)
-    todo = []
-    for i, item in enumerate(items):
-        folder = out / item.name
-        run = None if force else _read_run(folder)
-        if not _is_complete(run, item, job, folder):
-            (folder / RUN).unlink(missing_ok=True)
-            todo.append(i)
-            continue
-        if gt_paths[i] is not None and run.get("gt") != gt_paths[i]:  # metrics asked for later
-            from .mot import read_mot  # noqa: PLC0415
-
-            run["metrics"], run["error"] = _metrics(read_mot(folder / TRACKS), gt_paths[i])
-            run["gt"] = gt_paths[i]
-            _write_json(folder / RUN, run)
-        runs[i] = dict(run, skipped=True)
-    return runs, todo
+class ClusterError(RuntimeError):
+    """The local cluster lost all its workers and got none back."""
 
 
-def _collect(futures: Dict[Any, int], items, job, out: Path, gt_paths, config_path, runs,
-             summary: "_Summary", bar: _Progress) -> None:
-    """Writes each task's run.json as it finishes (removing it from `futures`)."""
-    from distributed import as_completed  # noqa: PLC0415
+class _Batch:
+    """One track_many call: its inputs, their run.json records (`runs`, in input order), and
+    what happens as tasks finish."""
 
-    for future in as_completed(list(futures)):
-        i = futures.pop(future)
+    WORKERLESS_SECONDS = 60.0
+
+    def __init__(self, items: Sequence[Input], job: Dict[str, Any], out: Path,
+                 gt_paths: Sequence[Optional[str]], config_path: Optional[str],
+                 interrupts: _Interrupts):
+        self.items, self.job, self.out = items, job, out
+        self.gt_paths, self.config_path = gt_paths, config_path
+        self.interrupts = interrupts
+        self.runs: List[Optional[dict]] = [None] * len(items)
+
+    def plan(self, force: bool) -> List[int]:
+        """The indices of the inputs to track; the others are complete and get their records.
+        The former lose their run.json: until the new one, their folders are incomplete."""
+        todo = []
+        for i, item in enumerate(self.items):
+            folder = self.out / item.name
+            run = None if force else _read_run(folder)
+            if not _is_complete(run, item, self.job, folder):
+                (folder / RUN).unlink(missing_ok=True)
+                todo.append(i)
+                continue
+            gt_path = self.gt_paths[i]
+            if gt_path is not None and run.get("gt") != gt_path:  # metrics asked for later
+                from .mot import read_mot  # noqa: PLC0415
+
+                run["metrics"], run["error"] = _metrics(read_mot(folder / TRACKS), gt_path)
+                run["gt"] = gt_path
+                with self.interrupts.protect():
+                    _write_json(folder / RUN, run)
+            self.runs[i] = dict(run, skipped=True)
+        return todo
+
+    def collect(self, futures: Dict[Any, int], summary: "_Summary", bar: _Progress,
+                local_client=None) -> None:
+        """Records each task as it finishes (removing it from `futures`). Polls, so that a Ctrl-C
+        that Python delivered where it is lost (see :class:`_Interrupts`) is still seen, and so
+        that a local cluster left without workers fails instead of waiting for ever."""
+        from distributed import as_completed  # noqa: PLC0415
+
+        finished = as_completed(list(futures))
+        workers_seen = checked = time.monotonic()
+        while futures:
+            self.interrupts.check()
+            ready = finished.next_batch(block=False)
+            for future in ready:
+                i = futures.pop(future)
+                with self.interrupts.protect():
+                    self.runs[i] = self.finish(future, i)
+                summary.changed()
+                bar.update(self.runs[i])
+            if ready:
+                continue
+            time.sleep(0.05)
+            now = time.monotonic()
+            if local_client is not None and now - checked > 5.0:
+                checked = now
+                if local_client.nthreads():
+                    workers_seen = now
+                elif now - workers_seen > self.WORKERLESS_SECONDS:
+                    raise ClusterError("the local Dask workers died and none came back")
+
+    def finish(self, future, i: int) -> dict:
+        """Writes input `i`'s run.json from its finished task (a failure also removes its
+        outputs, as `vtrack track` leaves none) and returns it."""
         if future.status == "error":  # the task did not return: its worker died every time
             outcome = {"status": "failed", "error": _describe_task_error(future.exception())}
         else:
             outcome = future.result()
-        folder = out / items[i].name
+        item = self.items[i]
+        folder = self.out / item.name
         folder.mkdir(parents=True, exist_ok=True)
-        if outcome["status"] != "ok":  # a failure leaves no outputs (as `vtrack track`)
+        if outcome["status"] != "ok":
             for name in (TRACKS, RENDER):
                 (folder / name).unlink(missing_ok=True)
-        runs[i] = _record(items[i], job, outcome, gt_paths[i], config_path)
-        _write_json(folder / RUN, runs[i])
-        summary.changed()
-        bar.update(runs[i])
+        run = _record(item, self.job, outcome, self.gt_paths[i], self.config_path)
+        _write_json(folder / RUN, run)
+        return run
+
+
+class _Interrupts:
+    """Ctrl-C while a batch runs. In the main thread, over Python's default handler: SIGINT raises
+    KeyboardInterrupt at once, except inside :meth:`protect` (the client's file writes), where
+    it waits for the block to end -- so an interrupted write never leaves its temporary file --;
+    and it is remembered (:meth:`check`), since Python may deliver it inside a ``__del__`` (a Dask
+    Future's, say), where the exception is printed and lost."""
+
+    def __init__(self):
+        self.flag = threading.Event()
+        self.depth = 0
+        self.installed = False
+
+    def __enter__(self) -> "_Interrupts":
+        if (threading.current_thread() is threading.main_thread()
+                and signal.getsignal(signal.SIGINT) is signal.default_int_handler):
+            signal.signal(signal.SIGINT, self._handler)
+            self.installed = True
+        return self
+
+    def __exit__(self, *exc) -> None:
+        if self.installed:
+            signal.signal(signal.SIGINT, signal.default_int_handler)
+
+    def _handler(self, signum, frame):
+        self.flag.set()
+        if self.depth == 0:
+            raise KeyboardInterrupt
+
+    @contextlib.contextmanager
+    def protect(self):
+        already = self.flag.is_set()  # cleaning up after a Ctrl-C: do not raise again
+        self.depth += 1
+        try:
+            yield
+        finally:
+            self.depth -= 1
+        if not already and self.depth == 0:
+            self.check()
+
+    def check(self) -> None:
+        if self.flag.is_set():
+            raise KeyboardInterrupt
+
+
+def _announce(client, cluster, todo: int, total: int) -> None:
+    """What runs where, and Dask's dashboard when there is one (stderr)."""
+    info = client.scheduler_info()
+    where = (f"{len(info.get('workers', {}))} local worker process(es)" if cluster is not None
+             else f"the cluster at {client.scheduler.address}")
+    print(f"vtrack batch: {todo} of {total} inputs to track ({total - todo} already complete) "
+          f"on {where}", file=sys.stderr)
+    if "dashboard" in info.get("services", {}) and (cluster is None or _has_bokeh()):
+        print(f"vtrack batch: Dask dashboard at {client.dashboard_link}", file=sys.stderr)
 
 
 def _stop(client, cluster) -> None:
@@ -737,7 +851,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
                     "command again to do the rest", EXIT_INTERRUPTED)
     except (UsageError, TypeError, ValueError) as err:
         return fail(str(err), EXIT_USAGE)
-    except OSError as err:
+    except (OSError, ClusterError) as err:
         return fail(str(err), EXIT_FAILED)
     failed = [r for r in runs if r["status"] != "ok"]
     skipped = sum(1 for r in runs if r.get("skipped"))

@@ -1,0 +1,250 @@
+"""Throughput of `vtrack batch` (vtrack.batch.track_many on a local Dask cluster) against a plain
+sequential loop over the same inputs, and Dask's overhead per task.
+
+Inputs: 8 clips of 100 frames cut from vtest.avi (PETS09-S2L1, 768 x 576; frames 0-99, 99-198,
+..., re-encoded MPEG-4 like the original XVID) and 4 synthetic scenes (vtrack.synthetic, 320 x 240,
+150 frames, 4 people), tracked with the mb pipeline's defaults (the synthetic scenes with their
+size prior) at seed 0.
+
+Rows (median of --repeats rounds; each round runs every configuration once, in turn, so a load
+change on this shared machine hits all of them alike):
+- sequential: ``for clip: write_mot(out, vtrack.track_video(clip, background={"threads": 1}))``
+  -- one core, the reference of the bar.
+- sequential, KDE threads default: the same with OpenCV's default threads in the KDE (what one
+  `vtrack track` does), for information.
+- batch's task, sequential: ``vtrack.batch.run_input`` in a plain loop, no Dask -- the same
+  per-input work as a batch task: tracking, tracks.txt, and the frame count (probe_video decodes
+  the clip once more until track_video reports the count).
+- batch, N workers: ``track_many(clips, out, client=client, force=True)`` on a LocalCluster of N
+  single-threaded worker processes started before the clock (a long batch amortises the start;
+  its time is in its own row), including every run.json and summary.csv write.
+- cluster start: LocalCluster(2 workers) + Client, until the workers are up.
+- Dask per task: round trip of a no-op task (submit, schedule, run on a worker, gather), median
+  per task over 200 tasks on 1 worker, against the tracking time of one 100-frame vtest clip.
+- the frame count (``probe_video``) of one 100-frame vtest clip, against its tracking time.
+
+The bar (issue 15): 2 workers >= 1.8x the sequential throughput; Dask's per-task overhead < 1 % of
+a 100-frame clip's tracking time.
+
+    python benchmarks/batch.py [--video PATH] [--repeats R] [--quick]
+"""
+
+from __future__ import annotations
+
+import argparse
+import logging
+import os
+import shutil
+import sys
+import tempfile
+import time
+from pathlib import Path
+from statistics import median
+
+import cv2
+
+sys.path.insert(0, os.path.dirname(__file__))
+from _table import print_table  # noqa: E402
+
+import vtrack  # noqa: E402
+from vtrack import batch  # noqa: E402
+from vtrack.mot import write_mot  # noqa: E402
+from vtrack.synthetic import make_scene  # noqa: E402
+
+BAR_SPEEDUP = 1.8
+BAR_OVERHEAD = 0.01
+# The synthetic scenes' people are 14-24 x 36-60 px; the defaults are for PETS09.
+SYNTHETIC_PARAMS = dict(width_mean=19.0, width_std=4.0, width_min=10.0, width_max=30.0,
+                        height_mean=48.0, height_std=8.0, height_min=30.0, height_max=70.0)
+
+
+def default_video() -> str:
+    return os.environ.get("VTRACK_VIDEO", str(Path.home() / ".cache" / "vtrack" / "vtest.avi"))
+
+
+def make_clips(video: str, folder: Path, n_clips: int, clip_frames: int, n_synthetic: int):
+    """[(path, frames, params)]: `n_clips` consecutive clips of `video`, then synthetic scenes."""
+    cap = cv2.VideoCapture(video)
+    clips = []
+    for i in range(n_clips):
+        path = folder / f"vtest{i}.avi"
+        cap.set(cv2.CAP_PROP_POS_FRAMES, i * (clip_frames - 1))
+        writer = None
+        for _ in range(clip_frames):
+            ok, frame = cap.read()
+            if not ok:
+                raise SystemExit(f"{video} has too few frames for {n_clips} clips")
+            if writer is None:
+                h, w = frame.shape[:2]
+                writer = cv2.VideoWriter(str(path), cv2.VideoWriter_fourcc(*"XVID"), 7.0, (w, h))
+            writer.write(frame)
+        writer.release()
+        clips.append((path, clip_frames, {}))
+    cap.release()
+    for i in range(n_synthetic):
+        scene = make_scene(320, 240, n_frames=150, n_people=4, seed=100 + i)
+        path = folder / f"synthetic{i}.avi"
+        writer = cv2.VideoWriter(str(path), cv2.VideoWriter_fourcc(*"MJPG"), 10.0, (320, 240))
+        for k in range(len(scene)):
+            writer.write(scene.frame(k))
+        writer.release()
+        clips.append((path, len(scene), SYNTHETIC_PARAMS))
+    return clips
+
+
+def sequential(clips, out: Path, threads):
+    start = time.perf_counter()
+    for path, _, params in clips:
+        background = {} if threads is None else {"threads": threads}
+        write_mot(out / f"{path.stem}.txt",
+                  vtrack.track_video(path, seed=0, background=background, **params))
+    return time.perf_counter() - start
+
+
+def task_loop(clips, out: Path):
+    """batch's task function in a plain loop: the same work per input as a batch, no Dask."""
+    start = time.perf_counter()
+    for path, _, params in clips:
+        outcome = batch.run_input(str(path), str(out / path.stem), batch.make_job(seed=0, **params),
+                                  None)
+        if outcome["status"] != "ok":
+            raise SystemExit(f"task failed: {outcome['error']}")
+    return time.perf_counter() - start
+
+
+def batched(clips, out: Path, client):
+    """track_many per parameter group (the synthetic scenes have their own size prior)."""
+    start = time.perf_counter()
+    groups = {}
+    for path, _, params in clips:
+        groups.setdefault(tuple(sorted(params.items())), []).append(str(path))
+    for params, paths in groups.items():
+        runs = batch.track_many(paths, out / str(len(params)), client=client, force=True, seed=0,
+                                **dict(params))
+        failed = [r for r in runs if r["status"] != "ok"]
+        if failed:
+            raise SystemExit(f"batch failed: {failed[0]['error']}")
+    return time.perf_counter() - start
+
+
+def noop():
+    return None
+
+
+def dask_task_overhead(client, n=200):
+    client.submit(noop, pure=False).result()  # warm-up
+    samples = []
+    for _ in range(3):
+        start = time.perf_counter()
+        futures = [client.submit(noop, pure=False) for _ in range(n)]
+        client.gather(futures)
+        samples.append((time.perf_counter() - start) / n)
+    serial = []
+    for _ in range(20):
+        start = time.perf_counter()
+        client.submit(noop, pure=False).result()
+        serial.append(time.perf_counter() - start)
+    return median(samples), median(serial)
+
+
+def load_text():
+    one, five, fifteen = os.getloadavg()
+    return f"load average {one:.2f} / {five:.2f} / {fifteen:.2f} (1 / 5 / 15 min) on {os.cpu_count()} cores"
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--video", default=default_video())
+    parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--quick", action="store_true", help="2 vtest clips, 1 synthetic, 1 repeat")
+    args = parser.parse_args()
+    from distributed import Client, LocalCluster
+
+    if not os.path.exists(args.video):
+        print(f"sample video missing at {args.video} (make bench fetches it)", file=sys.stderr)
+        return 1
+    n_clips, n_synthetic, repeats = (2, 1, 1) if args.quick else (8, 4, args.repeats)
+    work = Path(tempfile.mkdtemp(prefix="vtrack-bench-batch-"))
+    try:
+        clips = make_clips(args.video, work, n_clips, 100, n_synthetic)
+        frames = sum(f for _, f, _ in clips)
+        print(f"{len(clips)} inputs, {frames} frames; {load_text()} at the start\n")
+        start = time.perf_counter()
+        clusters = {n: LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
+                                    dashboard_address=None, silence_logs=logging.ERROR)
+                    for n in (1, 2)}
+        clients = {n: Client(c) for n, c in clusters.items()}
+        for client in clients.values():
+            client.wait_for_workers(len(client.scheduler_info()["workers"]) or 1)
+        cluster_start = (time.perf_counter() - start) / 2
+        times = {k: [] for k in ("seq", "seq-threads", "task", 1, 2)}
+        loads = []
+        for r in range(repeats):
+            loads.append(os.getloadavg()[0])
+            out = work / f"out{r}"
+            for d in ("seq", "seq-threads", "task", "b1", "b2"):
+                (out / d).mkdir(parents=True)
+            times["seq"].append(sequential(clips, out / "seq", threads=1))
+            times["seq-threads"].append(sequential(clips, out / "seq-threads", threads=None))
+            times["task"].append(task_loop(clips, out / "task"))
+            times[1].append(batched(clips, out / "b1", clients[1]))
+            times[2].append(batched(clips, out / "b2", clients[2]))
+            for path, _, _ in clips:  # the batch wrote what the loop wrote
+                name = path.stem
+                found = list((out / "b2").glob(f"*/{name}/tracks.txt"))
+                if len(found) != 1 or found[0].read_bytes() != (out / "seq" / f"{name}.txt").read_bytes():
+                    raise SystemExit(f"batch tracks of {name} differ from the sequential loop's")
+            shutil.rmtree(out)
+        per_task, per_task_serial = dask_task_overhead(clients[1])
+        # One 100-frame vtest clip tracked alone, and its frame count.
+        clip = clips[0][0]
+        track_s = median(_timed(lambda: vtrack.track_video(clip, seed=0, background={"threads": 1}))
+                         for _ in range(3))
+        probe_s = median(_timed(lambda: vtrack.probe_video(clip)) for _ in range(3))
+        for client in clients.values():
+            client.close()
+        for cluster in clusters.values():
+            cluster.close()
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+
+    seq, task = median(times["seq"]), median(times["task"])
+    rows = []
+    for label, key in (("sequential loop (track_video + write_mot), KDE 1 thread", "seq"),
+                       ("sequential loop, KDE default threads", "seq-threads"),
+                       ("batch's task in a sequential loop (+ frame count), no Dask", "task"),
+                       ("batch, 1 worker", 1), ("batch, 2 workers", 2)):
+        t = median(times[key])
+        rows.append([label, f"{t:.2f}", f"{frames / t:.1f}", f"{seq / t:.2f}x", f"{task / t:.2f}x"])
+    print_table(["configuration", "seconds (median)", "frames/s", "vs sequential loop",
+                 "vs task loop"], rows)
+    speedup = seq / median(times[2])
+    print(f"\nbar: 2 workers >= {BAR_SPEEDUP}x sequential: {speedup:.2f}x -> "
+          f"{'PASS' if speedup >= BAR_SPEEDUP else 'FAIL'}")
+    print()
+    print_table(["per task", "ms", "share of a 100-frame clip's tracking"], [
+        ["Dask no-op task, 200 in flight (throughput)", f"{per_task * 1e3:.2f}",
+         f"{per_task / track_s:.3%}"],
+        ["Dask no-op task, one at a time (latency)", f"{per_task_serial * 1e3:.2f}",
+         f"{per_task_serial / track_s:.3%}"],
+        ["frame count (probe_video, until track_video reports it)", f"{probe_s * 1e3:.1f}",
+         f"{probe_s / track_s:.2%}"],
+        ["tracking one 100-frame vtest clip (track_video)", f"{track_s * 1e3:.0f}", "100%"],
+        ["local cluster start (per cluster, 1-2 workers)", f"{cluster_start * 1e3:.0f}", ""],
+    ])
+    print(f"\nbar: Dask per-task overhead < {BAR_OVERHEAD:.0%} of a 100-frame clip: "
+          f"{per_task_serial / track_s:.3%} -> "
+          f"{'PASS' if per_task_serial / track_s < BAR_OVERHEAD else 'FAIL'}")
+    print(f"\n1-min load average at the start of each round: "
+          f"{', '.join(f'{x:.2f}' for x in loads)}; {load_text()} at the end")
+    return 0
+
+
+def _timed(fn):
+    start = time.perf_counter()
+    fn()
+    return time.perf_counter() - start
+
+
+if __name__ == "__main__":
+    sys.exit(main())
