@@ -3,8 +3,7 @@ sequential loop over the same inputs, and Dask's overhead per task.
 
 Inputs: 8 clips of 100 frames cut from vtest.avi (PETS09-S2L1, 768 x 576; frames 0-99, 99-198,
 ..., re-encoded MPEG-4 like the original XVID) and 4 synthetic scenes (vtrack.synthetic, 320 x 240,
-150 frames, 4 people), tracked with the mb pipeline's defaults (the synthetic scenes with their
-size prior) at seed 0.
+150 frames, 4 people), all tracked with the mb pipeline's defaults at seed 0 (one track_many call).
 
 Rows (median of --repeats rounds; each round runs every configuration once, in turn, so a load
 change on this shared machine hits all of them alike):
@@ -53,9 +52,6 @@ from vtrack.synthetic import make_scene  # noqa: E402
 
 BAR_SPEEDUP = 1.8
 BAR_OVERHEAD = 0.01
-# The synthetic scenes' people are 14-24 x 36-60 px; the defaults are for PETS09.
-SYNTHETIC_PARAMS = dict(width_mean=19.0, width_std=4.0, width_min=10.0, width_max=30.0,
-                        height_mean=48.0, height_std=8.0, height_min=30.0, height_max=70.0)
 
 
 def default_video() -> str:
@@ -63,7 +59,7 @@ def default_video() -> str:
 
 
 def make_clips(video: str, folder: Path, n_clips: int, clip_frames: int, n_synthetic: int):
-    """[(path, frames, params)]: `n_clips` consecutive clips of `video`, then synthetic scenes."""
+    """[(path, frames)]: `n_clips` consecutive clips of `video`, then synthetic scenes."""
     cap = cv2.VideoCapture(video)
     clips = []
     for i in range(n_clips):
@@ -79,7 +75,7 @@ def make_clips(video: str, folder: Path, n_clips: int, clip_frames: int, n_synth
                 writer = cv2.VideoWriter(str(path), cv2.VideoWriter_fourcc(*"XVID"), 7.0, (w, h))
             writer.write(frame)
         writer.release()
-        clips.append((path, clip_frames, {}))
+        clips.append((path, clip_frames))
     cap.release()
     for i in range(n_synthetic):
         scene = make_scene(320, 240, n_frames=150, n_people=4, seed=100 + i)
@@ -88,42 +84,35 @@ def make_clips(video: str, folder: Path, n_clips: int, clip_frames: int, n_synth
         for k in range(len(scene)):
             writer.write(scene.frame(k))
         writer.release()
-        clips.append((path, len(scene), SYNTHETIC_PARAMS))
+        clips.append((path, len(scene)))
     return clips
 
 
 def sequential(clips, out: Path, threads):
     start = time.perf_counter()
-    for path, _, params in clips:
+    for path, _ in clips:
         background = {} if threads is None else {"threads": threads}
-        write_mot(out / f"{path.stem}.txt",
-                  vtrack.track_video(path, seed=0, background=background, **params))
+        write_mot(out / f"{path.stem}.txt", vtrack.track_video(path, seed=0, background=background))
     return time.perf_counter() - start
 
 
 def task_loop(clips, out: Path):
     """batch's task function in a plain loop: the same work per input as a batch, no Dask."""
     start = time.perf_counter()
-    for path, _, params in clips:
-        outcome = batch.run_input(str(path), str(out / path.stem), batch.make_job(seed=0, **params),
-                                  None)
+    for path, _ in clips:
+        outcome = batch.run_input(str(path), str(out / path.stem), batch.make_job(seed=0), None)
         if outcome["status"] != "ok":
             raise SystemExit(f"task failed: {outcome['error']}")
     return time.perf_counter() - start
 
 
 def batched(clips, out: Path, client):
-    """track_many per parameter group (the synthetic scenes have their own size prior)."""
     start = time.perf_counter()
-    groups = {}
-    for path, _, params in clips:
-        groups.setdefault(tuple(sorted(params.items())), []).append(str(path))
-    for params, paths in groups.items():
-        runs = batch.track_many(paths, out / str(len(params)), client=client, force=True, seed=0,
-                                **dict(params))
-        failed = [r for r in runs if r["status"] != "ok"]
-        if failed:
-            raise SystemExit(f"batch failed: {failed[0]['error']}")
+    runs = batch.track_many([str(path) for path, _ in clips], out, client=client, force=True,
+                            seed=0)
+    failed = [r for r in runs if r["status"] != "ok"]
+    if failed:
+        raise SystemExit(f"batch failed: {failed[0]['error']}")
     return time.perf_counter() - start
 
 
@@ -152,6 +141,70 @@ def load_text():
     return f"load average {one:.2f} / {five:.2f} / {fifteen:.2f} (1 / 5 / 15 min) on {os.cpu_count()} cores"
 
 
+CONFIGS = (("sequential loop (track_video + write_mot), KDE 1 thread", "seq"),
+           ("sequential loop, KDE default threads", "seq-threads"),
+           ("batch's task in a sequential loop (+ frame count), no Dask", "task"),
+           ("batch, 1 worker", 1), ("batch, 2 workers", 2))
+
+
+def measure_rounds(clips, work: Path, clients, repeats: int):
+    """{config: [seconds per round]}, and the 1-min load at the start of each configuration. The
+    order of the configurations turns by one each round, so a load that rises or falls during a
+    round does not always hit the same one."""
+    runners = {"seq": lambda out: sequential(clips, out, threads=1),
+               "seq-threads": lambda out: sequential(clips, out, threads=None),
+               "task": lambda out: task_loop(clips, out),
+               1: lambda out: batched(clips, out, clients[1]),
+               2: lambda out: batched(clips, out, clients[2])}
+    keys = [key for _, key in CONFIGS]
+    times = {key: [] for key in keys}
+    loads = []
+    for r in range(repeats):
+        out = work / f"round{r}"
+        for key in keys[r % len(keys):] + keys[:r % len(keys)]:
+            (out / str(key)).mkdir(parents=True)
+            loads.append(os.getloadavg()[0])
+            times[key].append(runners[key](out / str(key)))
+        for path, _ in clips:  # the batch wrote what the plain loop wrote
+            tracks = (out / "2" / path.stem / "tracks.txt").read_bytes()
+            if tracks != (out / "seq" / f"{path.stem}.txt").read_bytes():
+                raise SystemExit(f"batch tracks of {path.stem} differ from the sequential loop's")
+        shutil.rmtree(out)
+    return times, loads
+
+
+def report(times, frames: int, n_tasks: int, overheads: dict, loads) -> None:
+    seq, task = median(times["seq"]), median(times["task"])
+    rows = []
+    for label, key in CONFIGS:
+        t = median(times[key])
+        rows.append([label, f"{t:.2f}", f"{frames / t:.1f}", f"{seq / t:.2f}x", f"{task / t:.2f}x"])
+    print_table(["configuration", "seconds (median)", "frames/s", "vs sequential loop",
+                 "vs task loop"], rows)
+    speedup = seq / median(times[2])
+    print(f"\nbar: 2 workers >= {BAR_SPEEDUP}x sequential: {speedup:.2f}x -> "
+          f"{'PASS' if speedup >= BAR_SPEEDUP else 'FAIL'}\n")
+    track_s = overheads["track"]
+    per_input = (median(times[1]) - task) / n_tasks
+    print_table(["per task", "ms", "share of a 100-frame clip's tracking"], [
+        ["Dask no-op task, 200 in flight (throughput)", f"{overheads['noop'] * 1e3:.2f}",
+         f"{overheads['noop'] / track_s:.3%}"],
+        ["Dask no-op task, one at a time (latency)", f"{overheads['noop_serial'] * 1e3:.2f}",
+         f"{overheads['noop_serial'] / track_s:.3%}"],
+        ["batch, 1 worker, minus the task loop, per input", f"{per_input * 1e3:.1f}",
+         f"{per_input / track_s:.2%}"],
+        ["frame count (probe_video, until track_video reports it)",
+         f"{overheads['probe'] * 1e3:.1f}", f"{overheads['probe'] / track_s:.2%}"],
+        ["tracking one 100-frame vtest clip (track_video)", f"{track_s * 1e3:.0f}", "100%"],
+        ["local cluster start (per cluster, 1-2 workers)", f"{overheads['start'] * 1e3:.0f}", ""],
+    ])
+    share = overheads["noop_serial"] / track_s
+    print(f"\nbar: Dask per-task overhead < {BAR_OVERHEAD:.0%} of a 100-frame clip: {share:.3%} "
+          f"-> {'PASS' if share < BAR_OVERHEAD else 'FAIL'}")
+    print(f"\n1-min load average at the start of each measurement: "
+          f"{', '.join(f'{x:.1f}' for x in loads)}; {load_text()} at the end")
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--video", default=default_video())
@@ -160,6 +213,7 @@ def main() -> int:
     args = parser.parse_args()
     from distributed import Client, LocalCluster
 
+    logging.getLogger("distributed").setLevel(logging.ERROR)  # its INFO lines on start and close
     if not os.path.exists(args.video):
         print(f"sample video missing at {args.video} (make bench fetches it)", file=sys.stderr)
         return 1
@@ -167,76 +221,29 @@ def main() -> int:
     work = Path(tempfile.mkdtemp(prefix="vtrack-bench-batch-"))
     try:
         clips = make_clips(args.video, work, n_clips, 100, n_synthetic)
-        frames = sum(f for _, f, _ in clips)
+        frames = sum(f for _, f in clips)
         print(f"{len(clips)} inputs, {frames} frames; {load_text()} at the start\n")
         start = time.perf_counter()
         clusters = {n: LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                                    dashboard_address=None, silence_logs=logging.ERROR)
+                                    dashboard_address=":0", silence_logs=logging.ERROR)
                     for n in (1, 2)}
         clients = {n: Client(c) for n, c in clusters.items()}
-        for client in clients.values():
-            client.wait_for_workers(len(client.scheduler_info()["workers"]) or 1)
-        cluster_start = (time.perf_counter() - start) / 2
-        times = {k: [] for k in ("seq", "seq-threads", "task", 1, 2)}
-        loads = []
-        for r in range(repeats):
-            loads.append(os.getloadavg()[0])
-            out = work / f"out{r}"
-            for d in ("seq", "seq-threads", "task", "b1", "b2"):
-                (out / d).mkdir(parents=True)
-            times["seq"].append(sequential(clips, out / "seq", threads=1))
-            times["seq-threads"].append(sequential(clips, out / "seq-threads", threads=None))
-            times["task"].append(task_loop(clips, out / "task"))
-            times[1].append(batched(clips, out / "b1", clients[1]))
-            times[2].append(batched(clips, out / "b2", clients[2]))
-            for path, _, _ in clips:  # the batch wrote what the loop wrote
-                name = path.stem
-                found = list((out / "b2").glob(f"*/{name}/tracks.txt"))
-                if len(found) != 1 or found[0].read_bytes() != (out / "seq" / f"{name}.txt").read_bytes():
-                    raise SystemExit(f"batch tracks of {name} differ from the sequential loop's")
-            shutil.rmtree(out)
-        per_task, per_task_serial = dask_task_overhead(clients[1])
-        # One 100-frame vtest clip tracked alone, and its frame count.
-        clip = clips[0][0]
-        track_s = median(_timed(lambda: vtrack.track_video(clip, seed=0, background={"threads": 1}))
-                         for _ in range(3))
-        probe_s = median(_timed(lambda: vtrack.probe_video(clip)) for _ in range(3))
+        for client in clients.values():  # every worker imports vtrack before the clock starts
+            client.run(lambda: __import__("vtrack.batch"))
+        overheads = {"start": (time.perf_counter() - start) / 2}
+        times, loads = measure_rounds(clips, work, clients, repeats)
+        overheads["noop"], overheads["noop_serial"] = dask_task_overhead(clients[1])
+        clip = clips[0][0]  # a 100-frame vtest clip
+        overheads["track"] = median(_timed(lambda: vtrack.track_video(
+            clip, seed=0, background={"threads": 1})) for _ in range(3))
+        overheads["probe"] = median(_timed(lambda: vtrack.probe_video(clip)) for _ in range(3))
         for client in clients.values():
             client.close()
         for cluster in clusters.values():
             cluster.close()
     finally:
         shutil.rmtree(work, ignore_errors=True)
-
-    seq, task = median(times["seq"]), median(times["task"])
-    rows = []
-    for label, key in (("sequential loop (track_video + write_mot), KDE 1 thread", "seq"),
-                       ("sequential loop, KDE default threads", "seq-threads"),
-                       ("batch's task in a sequential loop (+ frame count), no Dask", "task"),
-                       ("batch, 1 worker", 1), ("batch, 2 workers", 2)):
-        t = median(times[key])
-        rows.append([label, f"{t:.2f}", f"{frames / t:.1f}", f"{seq / t:.2f}x", f"{task / t:.2f}x"])
-    print_table(["configuration", "seconds (median)", "frames/s", "vs sequential loop",
-                 "vs task loop"], rows)
-    speedup = seq / median(times[2])
-    print(f"\nbar: 2 workers >= {BAR_SPEEDUP}x sequential: {speedup:.2f}x -> "
-          f"{'PASS' if speedup >= BAR_SPEEDUP else 'FAIL'}")
-    print()
-    print_table(["per task", "ms", "share of a 100-frame clip's tracking"], [
-        ["Dask no-op task, 200 in flight (throughput)", f"{per_task * 1e3:.2f}",
-         f"{per_task / track_s:.3%}"],
-        ["Dask no-op task, one at a time (latency)", f"{per_task_serial * 1e3:.2f}",
-         f"{per_task_serial / track_s:.3%}"],
-        ["frame count (probe_video, until track_video reports it)", f"{probe_s * 1e3:.1f}",
-         f"{probe_s / track_s:.2%}"],
-        ["tracking one 100-frame vtest clip (track_video)", f"{track_s * 1e3:.0f}", "100%"],
-        ["local cluster start (per cluster, 1-2 workers)", f"{cluster_start * 1e3:.0f}", ""],
-    ])
-    print(f"\nbar: Dask per-task overhead < {BAR_OVERHEAD:.0%} of a 100-frame clip: "
-          f"{per_task_serial / track_s:.3%} -> "
-          f"{'PASS' if per_task_serial / track_s < BAR_OVERHEAD else 'FAIL'}")
-    print(f"\n1-min load average at the start of each round: "
-          f"{', '.join(f'{x:.2f}' for x in loads)}; {load_text()} at the end")
+    report(times, frames, len(clips), overheads, loads)
     return 0
 
 

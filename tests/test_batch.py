@@ -87,7 +87,7 @@ def references(data, vtrack_cli, tmp_path_factory):
 def client():
     """A real local cluster: 2 worker processes of one thread each."""
     cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                       dashboard_address=None)
+                                       dashboard_address=":0")
     with distributed.Client(cluster) as c:
         yield c
     cluster.close()

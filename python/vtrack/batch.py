@@ -20,8 +20,9 @@ names     results go to ``DIR/<name>/``: a video's file stem, an image folder's 
 outputs   ``tracks.txt`` (MOTChallenge), ``render.mp4`` (--render), ``run.json`` (input,
           parameters, vtrack version, seed, frames, seconds, fps, status, error, metrics, worker),
           and ``DIR/summary.csv`` (``input,name,status,frames,seconds,fps,error`` and, with --gt,
-          ``HOTA,MOTA,IDF1``; one row per finished input, in input order), rewritten after every
-          result. Every file is written under a temporary name and renamed when whole.
+          ``HOTA,MOTA,IDF1``; one row per finished input, in input order), rewritten as results
+          arrive (at most once a second, and at the end). Every file is written under a temporary
+          name and renamed when whole.
 complete  an input is complete when its ``run.json`` says ``ok`` for the same input path and the
           same parameters and its outputs are there. The worker renames ``tracks.txt`` (and the
           render) into place, then the client writes ``run.json``, last. A re-run skips complete
@@ -511,7 +512,7 @@ def _start_cluster(workers: Optional[int], scheduler: Optional[str], quiet: bool
 
     if scheduler is not None:
         return Client(scheduler), None
-    dashboard = ":8787" if _has_bokeh() else None
+    dashboard = ":8787" if _has_bokeh() else ":0"  # without bokeh: a bare HTTP server, any port
     if workers is None:
         workers = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
     cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
