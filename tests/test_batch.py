@@ -390,6 +390,10 @@ def test_inputs_names_are_unique_and_independent_of_order(tmp_path):
     forward = {i.path: i.name for i in batch.expand_inputs(paths)}
     assert len(set(forward.values())) == len(paths)
     assert {i.path: i.name for i in batch.expand_inputs(paths[::-1])} == forward
+    # Paths whose every name candidate collides are told apart by a hash of the path.
+    tricky = ["/data/a/b__c.avi", "/data/a/b/c.avi", "/data/z/c.avi"]
+    names = batch._unique_names(tricky)
+    assert len(set(names)) == 3 and names[2] == "z__c", names
     with pytest.raises(batch.UsageError, match="matches nothing"):
         batch.expand_inputs([str(tmp_path / "*.mkv")])
     assert batch.parse_setting("a=1") == ("a", 1)

@@ -226,8 +226,11 @@ def _unique_names(paths: Sequence[str]) -> List[str]:
         if not progressed:  # e.g. /x/a/cam.avi vs /x/a__cam.avi: the path's hash settles it
             for ids in clashes:
                 for i in ids:
-                    digest = hashlib.sha1(paths[i].encode()).hexdigest()[:8]
-                    candidates[i].append(f"{candidates[i][0]}-{digest}")
+                    digest = hashlib.sha1(paths[i].encode()).hexdigest()[:12]
+                    hashed = f"{candidates[i][0]}-{digest}"
+                    if candidates[i][-1] == hashed:
+                        raise RuntimeError(f"no unique output name for {paths[i]}")
+                    candidates[i].append(hashed)
                     level[i] = len(candidates[i]) - 1
 
 
@@ -511,7 +514,10 @@ def _start_cluster(workers: Optional[int], scheduler: Optional[str], quiet: bool
     from distributed import Client, LocalCluster  # noqa: PLC0415
 
     if scheduler is not None:
-        return Client(scheduler), None
+        try:
+            return Client(scheduler), None
+        except OSError as err:
+            raise OSError(f"cannot reach the Dask scheduler at {scheduler}: {err}") from None
     dashboard = ":8787" if _has_bokeh() else ":0"  # without bokeh: a bare HTTP server, any port
     if workers is None:
         workers = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
