@@ -46,18 +46,18 @@ def _write_scene(path, seed, frames=FRAMES):
 
 @pytest.fixture(scope="module")
 def data(tmp_path_factory):
-    """clips/s1.avi and s2.avi, an image folder frames/s4/img1 (MOTChallenge layout), a truncated
+    """clips/s1.avi and s2.avi, an image folder frames/s3/img1 (MOTChallenge layout), a truncated
     clips/corrupt.avi, ground truth gt/<name>/gt.txt."""
     root = tmp_path_factory.mktemp("batch-data")
     scenes = {}
     for i, name in enumerate(["s1", "s2"]):
         scenes[name] = _write_scene(root / "clips" / f"{name}.avi", seed=10 + i)
-    s4 = make_scene(160, 120, n_frames=FRAMES, n_people=2, seed=20, size=((8, 12), (20, 30)),
+    s3 = make_scene(160, 120, n_frames=FRAMES, n_people=2, seed=20, size=((8, 12), (20, 30)),
                     speed=(3.0, 5.0), illumination_amplitude=0.0)
-    (root / "frames" / "s4" / "img1").mkdir(parents=True)
-    for k in range(len(s4)):
-        cv2.imwrite(str(root / "frames" / "s4" / "img1" / f"{k + 1:06d}.png"), s4.frame(k))
-    scenes["s4"] = s4
+    (root / "frames" / "s3" / "img1").mkdir(parents=True)
+    for k in range(len(s3)):
+        cv2.imwrite(str(root / "frames" / "s3" / "img1" / f"{k + 1:06d}.png"), s3.frame(k))
+    scenes["s3"] = s3
     good = (root / "clips" / "s1.avi").read_bytes()
     (root / "clips" / "corrupt.avi").write_bytes(good[: len(good) // 2])
     for name, scene in scenes.items():
@@ -79,7 +79,7 @@ def references(data, vtrack_cli, tmp_path_factory):
     root, _ = data
     out = tmp_path_factory.mktemp("reference")
     videos = {"s1": root / "clips" / "s1.avi", "s2": root / "clips" / "s2.avi",
-              "s4": root / "frames" / "s4" / "img1"}
+              "s3": root / "frames" / "s3" / "img1"}
     return {name: _cli_reference(vtrack_cli, v, out / f"{name}.txt") for name, v in videos.items()}
 
 
@@ -111,18 +111,18 @@ def test_batch_equals_sequential_cli_and_reports_bad_inputs(data, references, cl
     root, scenes = data
     listing = root / "inputs.txt"
     listing.write_text("# clips, an image folder, and a file that is not there\n"
-                       "clips/*.avi\n\nframes/s4/img1\nmissing.avi\n")
+                       "clips/*.avi\n\nframes/s3/img1\nmissing.avi\n")
     out = tmp_path / "out"
     runs = batch.track_many([listing], out, client=client, seed=SEED,
                             gt=str(root / "gt" / "{name}" / "gt.txt"), **SETTINGS)
     names = [r["name"] for r in runs]
-    assert names == ["corrupt", "s1", "s2", "s4", "missing"]  # the list's order, globs sorted
+    assert names == ["corrupt", "s1", "s2", "s3", "missing"]  # the list's order, globs sorted
     rows = _summary(out)
     assert rows[0] == ["input", "name", "status", "frames", "seconds", "fps", "error",
                        "HOTA", "MOTA", "IDF1"]
     by_name = {r[1]: dict(zip(rows[0], r)) for r in rows[1:]}
     assert [r[1] for r in rows[1:]] == names
-    for name in ("s1", "s2", "s4"):
+    for name in ("s1", "s2", "s3"):
         row, folder = by_name[name], out / name
         assert row["status"] == "ok" and row["error"] == "", row
         assert (folder / "tracks.txt").read_bytes() == references[name], name
@@ -136,7 +136,7 @@ def test_batch_equals_sequential_cli_and_reports_bad_inputs(data, references, cl
         assert run["status"] == "ok" and run["seed"] == SEED and run["frames"] == FRAMES
         assert run["vtrack_version"] == vtrack.__version__
         assert run["parameters"]["params"] == SETTINGS and run["parameters"]["method"] == "mb"
-        assert run["input"] == str(root / ("frames/s4/img1" if name == "s4" else f"clips/{name}.avi"))
+        assert run["input"] == str(root / ("frames/s3/img1" if name == "s3" else f"clips/{name}.avi"))
     # The tracker found people (the comparison above is not of empty files).
     assert float(by_name["s1"]["MOTA"]) > 0.3, by_name["s1"]
     for name, message in (("corrupt", "frame"), ("missing", "no such file")):
