@@ -590,7 +590,7 @@ def track_many(inputs, out_dir: PathLike, client=None, *, method: str = "mb",
             raise UsageError(f"--gt: {err}") from None
     gt_paths = [_gt_path(gt, item) for item in items]
     check_job(job)
-    out = Path(out_dir)
+    out = Path(os.path.abspath(out_dir))  # the workers may run elsewhere, from another folder
     out.mkdir(parents=True, exist_ok=True)
     config_path = os.path.abspath(config) if config is not None else None
 
