@@ -15,7 +15,7 @@ VIDEO_SHA256 := 45cddc9490be69345cbdab64ca583be65987e864ca408038e648db99e10516cf
 DEMO_OUT ?= demo-output
 # PETS09-S2L1 ground truth (MOT15), shipped in data/ (data/pets09-s2l1/SOURCE.md).
 PETS_GT ?= data/pets09-s2l1/gt.txt
-APT_PACKAGES := build-essential libeigen3-dev libopencv-dev libgtest-dev
+APT_PACKAGES := build-essential libeigen3-dev libopencv-dev libgtest-dev libyaml-cpp-dev
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 SOURCES := CMakeLists.txt pyproject.toml $(shell find cpp bindings python -type f -not -name '*.pyc' 2>/dev/null)
 
@@ -45,7 +45,11 @@ bench: $(VENV)/.vtrack-installed $(VENV)/.bench-deps $(VIDEO)
 	$(PY) benchmarks/multi_bernoulli.py
 	$(PY) benchmarks/pets09.py
 	$(PY) benchmarks/detections.py
+	$(PY) benchmarks/detections_sim.py
 	$(PY) benchmarks/track_video.py
+	$(PY) benchmarks/vehicle_geometry.py
+	$(PY) benchmarks/color_histogram.py
+	$(PY) benchmarks/follow.py
 
 build: $(VENV)/.vtrack-installed
 
@@ -64,7 +68,10 @@ $(VENV)/.dev-deps: requirements/dev.txt requirements/eval.txt | $(BUILD)/.system
 
 $(VENV)/.bench-deps: requirements/bench.txt requirements/bench-nodeps.txt $(VENV)/.dev-deps
 	$(PY) -m pip install --quiet -r requirements/bench.txt || echo "some benchmark peers failed to install; their rows will be skipped"
-	$(PY) -m pip install --quiet --no-deps -r requirements/bench-nodeps.txt || echo "sort-track failed to install; the PETS09 baseline will be skipped"
+	$(PY) -m pip install --quiet --no-deps -r requirements/bench-nodeps.txt || echo "a --no-deps benchmark peer failed to install; its rows will be skipped"
+	$(PY) -m pip install --quiet --no-deps --upgrade --target $(VENV)/opencv-contrib \
+	  "opencv-contrib-python-headless==$$($(PY) -c 'from importlib.metadata import version; print(version("opencv-python-headless"))')" \
+	  || echo "opencv-contrib failed to install; benchmarks/follow.py will skip CSRT and KCF"
 	touch $@
 
 # Build with the persistent build directory (incremental), C++ tests included, then install the

@@ -7,20 +7,19 @@ Inputs: 8 clips of 100 frames cut from vtest.avi (PETS09-S2L1, 768 x 576; frames
 
 Rows (median of --repeats rounds; each round runs every configuration once, in turn, so a load
 change on this shared machine hits all of them alike):
-- sequential: ``for clip: write_mot(out, vtrack.track_video(clip, background={"threads": 1}))``
-  -- one core, the reference of the bar.
+- sequential: ``for clip: vtrack.io.write_mot(out, vtrack.track_video(clip, "mb", seed=0,
+  threads=1))`` -- one core, the reference of the bar.
 - sequential, KDE threads default: the same with OpenCV's default threads in the KDE (what one
   `vtrack track` does), for information.
 - batch's task, sequential: ``vtrack.batch.run_input`` in a plain loop, no Dask -- the same
-  per-input work as a batch task: tracking, tracks.txt, and the frame count (probe_video decodes
-  the clip once more until track_video reports the count).
+  per-input work as a batch task: tracking (track_video with a progress callback counting the
+  frames) and tracks.txt.
 - batch, N workers: ``track_many(clips, out, client=client, force=True)`` on a LocalCluster of N
   single-threaded worker processes started before the clock (a long batch amortises the start;
   its time is in its own row), including every run.json and summary.csv write.
 - cluster start: LocalCluster(2 workers) + Client, until the workers are up.
 - Dask per task: round trip of a no-op task (submit, schedule, run on a worker, gather), median
   per task over 200 tasks on 1 worker, against the tracking time of one 100-frame vtest clip.
-- the frame count (``probe_video``) of one 100-frame vtest clip, against its tracking time.
 
 The bar (issue 15): 2 workers >= 1.8x the sequential throughput; Dask's per-task overhead < 1 % of
 a 100-frame clip's tracking time.
@@ -47,7 +46,7 @@ from _table import print_table  # noqa: E402
 
 import vtrack  # noqa: E402
 from vtrack import batch  # noqa: E402
-from vtrack.mot import write_mot  # noqa: E402
+from vtrack.io import write_mot  # noqa: E402
 from vtrack.synthetic import make_scene  # noqa: E402
 
 BAR_SPEEDUP = 1.8
@@ -91,8 +90,8 @@ def make_clips(video: str, folder: Path, n_clips: int, clip_frames: int, n_synth
 def sequential(clips, out: Path, threads):
     start = time.perf_counter()
     for path, _ in clips:
-        background = {} if threads is None else {"threads": threads}
-        write_mot(out / f"{path.stem}.txt", vtrack.track_video(path, seed=0, background=background))
+        params = {} if threads is None else {"threads": threads}
+        write_mot(out / f"{path.stem}.txt", vtrack.track_video(path, "mb", seed=0, **params))
     return time.perf_counter() - start
 
 
@@ -143,7 +142,7 @@ def load_text():
 
 CONFIGS = (("sequential loop (track_video + write_mot), KDE 1 thread", "seq"),
            ("sequential loop, KDE default threads", "seq-threads"),
-           ("batch's task in a sequential loop (+ frame count), no Dask", "task"),
+           ("batch's task in a sequential loop, no Dask", "task"),
            ("batch, 1 worker", 1), ("batch, 2 workers", 2))
 
 
@@ -193,8 +192,6 @@ def report(times, frames: int, n_tasks: int, overheads: dict, loads) -> None:
          f"{overheads['noop_serial'] / track_s:.3%}"],
         ["batch, 1 worker, minus the task loop, per input", f"{per_input * 1e3:.1f}",
          f"{per_input / track_s:.2%}"],
-        ["frame count (probe_video, until track_video reports it)",
-         f"{overheads['probe'] * 1e3:.1f}", f"{overheads['probe'] / track_s:.2%}"],
         ["tracking one 100-frame vtest clip (track_video)", f"{track_s * 1e3:.0f}", "100%"],
         ["local cluster start (per cluster, 1-2 workers)", f"{overheads['start'] * 1e3:.0f}", ""],
     ])
@@ -235,8 +232,7 @@ def main() -> int:
         overheads["noop"], overheads["noop_serial"] = dask_task_overhead(clients[1])
         clip = clips[0][0]  # a 100-frame vtest clip
         overheads["track"] = median(_timed(lambda: vtrack.track_video(
-            clip, seed=0, background={"threads": 1})) for _ in range(3))
-        overheads["probe"] = median(_timed(lambda: vtrack.probe_video(clip)) for _ in range(3))
+            clip, "mb", seed=0, threads=1)) for _ in range(3))
         for client in clients.values():
             client.close()
         for cluster in clusters.values():

@@ -3,7 +3,7 @@ vtrack's KDE (eq. 10) vs OpenCV's MOG2 and KNN, after the same closing and thres
 
 Every method's output is turned into a background image y in [0, 1] (vtrack: its y; MOG2/KNN:
 1 where their mask says background or shadow, 0 where it says foreground), closed with the same
-square (vtrack.close_square) and thresholded the same way (vtrack.foreground_mask, y < threshold).
+square (vtrack.image.close_square) and thresholded the same way (vtrack.image.foreground_mask, y < threshold).
 Over the frames after a warm-up, with the considered GT boxes (conf 1; the conf-0 boxes are
 "don't care": their pixels are excluded from the precision proxy):
   * recall proxy: share of GT boxes that are mostly foreground (at least half their pixels);
@@ -127,8 +127,8 @@ def main() -> None:
         dont_care = box_mask(frame.shape[:2], boxes, 0) & ~considered
         tiles = [draw_boxes(frame.copy(), boxes)]
         for m in methods:
-            y = vtrack.close_square(m.to_y(frame), args.closing)
-            fg = vtrack.foreground_mask(y, threshold=args.threshold) > 0
+            y = vtrack.image.close_square(m.to_y(frame), args.closing)
+            fg = vtrack.image.foreground_mask(y, threshold=args.threshold) > 0
             if k in sheet_frames:
                 shown = ([y] if m is methods[0] else []) + [(~fg).astype(np.float32)]
                 tiles += [draw_boxes((image * 255).astype(np.uint8), boxes) for image in shown]

@@ -72,8 +72,8 @@ track born on a duplicate box of the same person: the model's one-detection-per-
 explains duplicates by extra targets) and 720 have no detection under them (tracks coasting inside
 the image after their person's boxes moved to another track; survival_probability 0.9 instead of
 the default 0.99 cuts these to 139: MOTA 0.29, IDF1 0.41 there). Neither is about leaving the
-image. Confirmation (min_age 3, like SORT's min_hits) trims only short-lived tracks (+0.02 MOTA
-there); Gibbs ranking (gibbs_ranking) raises MOTA by exploring deaths that Murty's truncated
+image. Confirmation (confirm_frames 3, like SORT's min_hits) trims only short-lived tracks (+0.02 MOTA
+there); Gibbs ranking (ranking gibbs) raises MOTA by exploring deaths that Murty's truncated
 ranking misses, at the cost of IDF1 and HOTA (rows below). The score >= 40 rows stay: they are the
 fair comparison of the two trackers on ACF.
 
@@ -85,8 +85,8 @@ outside_* = p_S, p_D; frames/s of the variants from one timing, the others the m
 |----------------|-------------------------|-----------------|-------|-------|-------|----------|
 | (a) ACF, all   | vtrack GLMB (defaults)  | -0.096 (-0.067) | 0.428 | 0.325 | 4437  | 582      |
 | (a) ACF, all   | GLMB, constant p_S      | -3.811 (-6.206) | 0.172 | 0.149 | 21143 | 116      |
-| (a) ACF, all   | GLMB, gibbs_ranking     | 0.330 (0.429)   | 0.377 | 0.339 | 2532  | 1249     |
-| (a) ACF, all   | GLMB, min_age 3         | -0.069 (-0.037) | 0.431 | 0.327 | 4304  | 463      |
+| (a) ACF, all   | GLMB, ranking gibbs     | 0.330 (0.429)   | 0.377 | 0.339 | 2532  | 1249     |
+| (a) ACF, all   | GLMB, confirm_frames 3  | -0.069 (-0.037) | 0.431 | 0.327 | 4304  | 463      |
 | (a) ACF, all   | SORT                    | 0.671 (0.731)   | 0.291 | 0.285 | 533   | 769      |
 | (a) ACF, >= 40 | vtrack GLMB             | 0.742 (0.806)   | 0.649 | 0.502 | 660   | 842      |
 | (a) ACF, >= 40 | SORT                    | 0.697 (0.730)   | 0.375 | 0.328 | 217   | 1222     |
@@ -124,7 +124,7 @@ from pets09 import default_gt, default_video, run_sort, select  # noqa: E402
 
 import vtrack  # noqa: E402
 from vtrack.evaluate import evaluate  # noqa: E402
-from vtrack.mot import read_mot, write_mot  # noqa: E402
+from vtrack.io import read_mot, write_mot  # noqa: E402
 
 REPO = Path(__file__).resolve().parent.parent
 DATA = REPO / "data" / "pets09-s2l1"
@@ -142,8 +142,8 @@ ACF_ALL = "(a) MOT15 public (ACF), all"
 GLMB_VARIANTS = {
     "GLMB, constant p_S (before)": dict(outside_survival_probability=0.99,
                                         outside_detection_probability=0.8),
-    "GLMB, gibbs_ranking": dict(gibbs_ranking=True),
-    "GLMB, min_age 3": dict(min_age=3),
+    "GLMB, ranking gibbs": dict(ranking="gibbs"),
+    "GLMB, confirm_frames 3": dict(confirm_frames=3),
 }
 
 

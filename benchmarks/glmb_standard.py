@@ -50,8 +50,8 @@ def run(scenario, **params):
         start = time.perf_counter()
         estimates = tracker.step(z)
         seconds.append(time.perf_counter() - start)
-        x = np.array([e.mean[[0, 2]] for e in estimates]).reshape(-1, 2)
-        ospa.append(vtrack.ospa(scenario.truth_positions(k), x, c=100.0, p=1.0).distance)
+        x = np.zeros((0, 2)) if estimates.states is None else estimates.states[:, [0, 2]]
+        ospa.append(vtrack.metrics.ospa(scenario.truth_positions(k), x, c=100.0, p=1.0).distance)
         card.append(abs(len(estimates) - len(scenario.truth_states[k])))
     return float(np.mean(ospa)), float(np.mean(card)), 1e3 * median(seconds), 1e3 * np.mean(seconds)
 

@@ -1,4 +1,4 @@
-"""Murty's k-best assignments: vtrack.murty vs a plain Murty on SciPy's linear_sum_assignment.
+"""Murty's k-best assignments: vtrack.assign.murty vs a plain Murty on SciPy's linear_sum_assignment.
 
 Usage: python benchmarks/murty.py [--repeats R] [--quick]
 
@@ -126,11 +126,11 @@ def main():
     rows = []
     for name, cost in shapes:
         for k in (1, 10, 100, 1000):
-            got_costs = vtrack.murty(cost, k)[1]
+            got_costs = vtrack.assign.murty(cost, k)[1]
             ref_costs = reference_murty(cost, k)[0]
             if len(got_costs) != len(ref_costs) or not np.allclose(got_costs, ref_costs, atol=1e-9):
                 raise SystemExit(f"vtrack and the reference disagree on {name}, k = {k}")
-            t_vtrack = median_seconds(lambda: vtrack.murty(cost, k), args.repeats)
+            t_vtrack = median_seconds(lambda: vtrack.assign.murty(cost, k), args.repeats)
             t_ref, ref_repeats = time_reference(cost, k, args.repeats)
             rows.append([name, k, len(got_costs), f"{t_vtrack * 1e3:.3f}", f"{t_ref * 1e3:.1f}",
                          ref_repeats, f"{t_ref / t_vtrack:.0f}x"])
@@ -144,9 +144,9 @@ def main():
     per_matrix = []
     for seed in range(5):
         cost = random_square(100, np.random.default_rng(seed))
-        per_matrix.append(median_seconds(lambda: vtrack.murty(cost, 1000), args.repeats) * 1e3)
+        per_matrix.append(median_seconds(lambda: vtrack.assign.murty(cost, 1000), args.repeats) * 1e3)
     verdict = "meets" if max(per_matrix) < SPEED_BAR_MS else "MISSES"
-    print(f"vtrack.murty, k = 1000 on 100x100 uniform random matrices (5 seeds, median of "
+    print(f"vtrack.assign.murty, k = 1000 on 100x100 uniform random matrices (5 seeds, median of "
           f"{args.repeats} each): median {median(per_matrix):.1f} ms, worst {max(per_matrix):.1f} ms; "
           f"{verdict} the {SPEED_BAR_MS:.0f} ms bar (single thread)")
 

@@ -137,7 +137,7 @@ from _table import print_table  # noqa: E402
 
 import vtrack  # noqa: E402
 from vtrack.evaluate import box_iou_matrix, evaluate  # noqa: E402
-from vtrack.mot import read_mot, write_mot  # noqa: E402
+from vtrack.io import read_mot, write_mot  # noqa: E402
 
 REPO = Path(__file__).resolve().parent.parent
 
@@ -178,13 +178,12 @@ def run_vtrack(frames, first: int, seed: int = 0, variants=({},), **params):
     bg = vtrack.KdeBackground()
     trackers = [vtrack.MultiBernoulliTracker((w, h), seed=seed, **{**params, **v})
                 for v in variants]
-    rows = [[] for _ in variants]
+    rows = [[np.zeros((0, 10))] for _ in variants]
     for k, frame in enumerate(frames):
         y = bg.apply(frame)
         for tracker, out in zip(trackers, rows):
-            for t in tracker.step(y):
-                out.append((first + k, t.label, t.x, t.y, t.w, t.h, t.existence, -1, -1, -1))
-    return [np.asarray(r, np.float64).reshape(-1, 10) for r in rows]
+            out.append(vtrack.io.mot_rows(first + k, tracker.step(y)))
+    return [np.vstack(r) for r in rows]
 
 
 def detect_mog2(frames, close: int = 15, min_area: int = 400, open_size: int = 3):

@@ -45,7 +45,7 @@ def main():
         weights /= weights.sum()
         vt_rng = vtrack.Rng(1)
         np_rng = np.random.default_rng(1)
-        t_vtrack = median_seconds(lambda: vtrack.resample(weights, vt_rng), args.repeats)
+        t_vtrack = median_seconds(lambda: vtrack.smc.resample(weights, vt_rng), args.repeats)
         t_numpy = median_seconds(lambda: numpy_systematic(weights, np_rng), args.repeats)
         row = [f"{n:,}", f"{t_vtrack * 1e3:.3f}", f"{n / t_vtrack / 1e6:.0f}",
                f"{t_numpy * 1e3:.3f}", f"{t_numpy / t_vtrack:.1f}x"]

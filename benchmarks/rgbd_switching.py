@@ -16,7 +16,7 @@ p_S 0.999, adaptive birth (rate 0.01), 200 hypotheses):
 
 Metrics per run (medians over seeds in the table):
   OSPA        mean over frames of OSPA (c = 1 m, p = 1) on 3-D positions (X, Y, D)
-  OSPA(2)     vtrack.ospa2 (c = 1 m, p = 1) between the whole true and estimated trajectories
+  OSPA(2)     vtrack.metrics.ospa2 (c = 1 m, p = 1) between the whole true and estimated trajectories
               (tracks by id / by label; NaN where absent)
   switches    label switches: per frame, truth and estimates are matched by an optimal assignment
               within 0.5 m (vtrack.rgbd.match_frame); a switch is a truth id assigned a label
@@ -76,7 +76,8 @@ sys.path.insert(0, os.path.dirname(__file__))
 from _table import print_table  # noqa: E402
 
 import vtrack  # noqa: E402
-from vtrack.rgbd import burst_outcomes, clear_mot, identity_events, make_rgbd_scene  # noqa: E402
+from vtrack.rgbd import (burst_outcomes, clear_mot, identity_events, make_rgbd_scene,  # noqa: E402
+                         positions)
 
 METHODS = {
     "switching (particle + depth)": dict(density="particle", switching=True),
@@ -105,7 +106,7 @@ def run(scene, spec, particles, depth_params):
         start = time.perf_counter()
         est = tracker.step(z, depth=depth) if depth is not None else tracker.step(z)
         seconds.append(time.perf_counter() - start)
-        frames.append([(e.label, e.mean[[0, 2, 4]].copy()) for e in est])
+        frames.append(positions(est))
     return frames, 1e3 * median(seconds)
 
 
@@ -121,12 +122,12 @@ def trajectories(frames_of_points, n_frames):
 
 
 def score(scene, frames):
-    ospa = [vtrack.ospa(scene.truth_positions(k), np.array([x for _, x in f]).reshape(-1, 3),
+    ospa = [vtrack.metrics.ospa(scene.truth_positions(k), np.array([x for _, x in f]).reshape(-1, 3),
                         c=C, p=1.0).distance for k, f in enumerate(frames)]
     card = [abs(len(f) - len(scene.truth_ids[k])) for k, f in enumerate(frames)]
     truth = [[(int(i), x) for i, x in zip(scene.truth_ids[k], scene.truth_positions(k))]
              for k in range(scene.frames)]
-    ospa2 = vtrack.ospa2(trajectories(truth, scene.frames), trajectories(frames, scene.frames),
+    ospa2 = vtrack.metrics.ospa2(trajectories(truth, scene.frames), trajectories(frames, scene.frames),
                          c=C, p=1.0).distance
     ev = identity_events(scene, frames, gate=0.5)
     mot = clear_mot(scene, frames, gate=0.5)
@@ -205,13 +206,13 @@ def main():
     parser.add_argument("--figure", default="demo-output/rgbd_switching.png")
     parser.add_argument("--figure-seed", type=int, default=0)
     args = parser.parse_args()
-    defaults = vtrack.DepthLikelihood(2, 2, 1.0)
+    defaults = vtrack.models.DepthLikelihood.default_params()
     depth_params = {
-        "tempering": args.tempering if args.tempering is not None else defaults.tempering,
+        "tempering": args.tempering if args.tempering is not None else defaults["tempering"],
         "sigma_target": (args.sigma_target if args.sigma_target is not None
-                         else defaults.sigma_target),
+                         else defaults["sigma_target"]),
         "sigma_background": (args.sigma_background if args.sigma_background is not None
-                             else defaults.sigma_background)}
+                             else defaults["sigma_background"])}
     methods = dict(METHODS, **(ABLATIONS if args.ablations else {}))
     if args.switching_only:
         methods = {k: v for k, v in methods.items() if v["switching"]}

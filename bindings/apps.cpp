@@ -1,17 +1,105 @@
-// Bindings of vtrack::apps: video input.
+// Bindings of vtrack::apps: video input, configuration files and the video pipelines.
 #include <filesystem>
-
-#include <optional>
+#include <string>
+#include <vector>
 
 #include <pybind11/stl/filesystem.h>
 
 #include "common.hpp"
 #include "params.hpp"
-#include "vtrack/apps/parameters.hpp"
-#include "vtrack/apps/track_video.hpp"
+#include "tracks.hpp"
+#include "vtrack/apps/config.hpp"
+#include "vtrack/apps/pipeline.hpp"
 #include "vtrack/apps/video_source.hpp"
 
 namespace vtrack::bindings {
+namespace {
+
+// The kind of parameter a value of this alternative belongs to (for converting a Python value
+// given for it).
+std::pair<core::ParameterKind, std::size_t> kind_of(const core::ParameterValue& v) {
+  using K = core::ParameterKind;
+  if (std::holds_alternative<bool>(v)) return {K::flag, 0};
+  if (std::holds_alternative<std::int64_t>(v)) return {K::integer, 0};
+  if (std::holds_alternative<std::uint64_t>(v)) return {K::seed, 0};
+  if (std::holds_alternative<double>(v)) return {K::real, 0};
+  if (const auto* r = std::get_if<std::vector<double>>(&v)) return {K::reals, r->size()};
+  return {K::choice, 0};
+}
+
+// Sets `name` (a parameter of any of the method's sections, or of `section` when not empty) from
+// a Python value: TypeError for an unknown name or a wrong type.
+void set_from_python(apps::PipelineParams& params, const std::string& section,
+                     const std::string& name, const py::handle& value) {
+  std::vector<std::string> names;
+  for (const auto& s : apps::pipeline_sections(params)) {
+    if (!section.empty() && s.name != section) continue;
+    for (const auto& [key, current] : s.values) {
+      names.push_back(key);
+      if (key != name) continue;
+      const auto [kind, size] = kind_of(current);
+      apps::set_pipeline_parameter(params, name, parameter_from_python(name, kind, size, value));
+      return;
+    }
+  }
+  throw_unknown_keyword(name, section.empty() ? params.method : section, names);
+}
+
+// A config given as Python sections {"seed": int, "<section>": {name: value}} (what load_config
+// returns), applied to `params`.
+void apply_python_config(apps::PipelineParams& params, const py::dict& config) {
+  for (const auto& item : config) {
+    const std::string section = py::str(item.first).cast<std::string>();
+    if (section == "seed") {
+      set_from_python(params, "", "seed", item.second);
+      continue;
+    }
+    bool known = false;
+    for (const auto& s : apps::pipeline_sections(params)) known = known || s.name == section;
+    if (!known) {
+      throw py::value_error("config: method " + params.method + " has no section '" + section + "'");
+    }
+    if (!py::isinstance<py::dict>(item.second)) {
+      throw py::type_error("config section '" + section + "' must be a dict");
+    }
+    for (const auto& entry : item.second.cast<py::dict>()) {
+      set_from_python(params, section, py::str(entry.first).cast<std::string>(), entry.second);
+    }
+  }
+}
+
+// The pipeline's parameters from a config (Python sections), keywords and `--set name=value`
+// texts, in that order of precedence (lowest first), as `vtrack track` resolves them.
+apps::PipelineParams pipeline_params(const std::string& method, const std::string& detector,
+                                     const py::dict& config, const py::dict& params,
+                                     const std::vector<std::string>& settings) {
+  apps::PipelineParams p;
+  p.method = method;
+  p.detector = detector;
+  apps::validate(p);  // the method and detector, before names are looked up in them
+  apply_python_config(p, config);
+  for (const auto& item : params) {
+    set_from_python(p, "", py::str(item.first).cast<std::string>(), item.second);
+  }
+  for (const auto& setting : settings) {
+    const auto [name, value] = core::parse_setting(setting);
+    apps::set_pipeline_parameter(p, name, value);
+  }
+  return p;
+}
+
+py::dict config_dict(const apps::Config& config) {
+  py::dict d;
+  if (config.seed) d["seed"] = py::int_(*config.seed);
+  for (const auto& [section, values] : config.sections) {
+    py::dict s;
+    for (const auto& [name, value] : values) s[name.c_str()] = parameter_to_python(value);
+    d[section.c_str()] = s;
+  }
+  return d;
+}
+
+}  // namespace
 
 void bind_apps(py::module_& m) {
   py::class_<apps::VideoInfo>(m, "VideoInfo", "What `probe_video` found.")
@@ -37,40 +125,61 @@ void bind_apps(py::module_& m) {
       "and fps. Raises vtrack.IoError (an OSError) for missing, unreadable or corrupt input.");
 
   m.def(
-      "track_video",
-      [](const std::filesystem::path& path, const std::string& method, std::uint64_t seed,
-         const std::optional<std::filesystem::path>& render, const std::optional<py::dict>& background,
-         const py::kwargs& tracker) {
-        if (method != "mb") throw py::value_error("method must be 'mb', got '" + method + "'");
-        apps::MbPipelineParams params;
-        params.seed = seed;
-        if (background) set_from_kwargs(params.background, *background, "background");
-        set_from_kwargs(params.tracker, tracker, "tracker");
-        std::vector<apps::TrackRow> rows;
+      "load_config",
+      [](const std::filesystem::path& path) {
+        apps::Config config;
         {
           py::gil_scoped_release release;
-          rows = apps::track_video_mb(path.string(), params, render ? render->string() : "");
+          config = apps::read_config(path.string());
         }
-        py::array_t<double> out({static_cast<py::ssize_t>(rows.size()), py::ssize_t{10}});
-        auto o = out.mutable_unchecked<2>();
-        for (std::size_t i = 0; i < rows.size(); ++i) {
-          const auto& r = rows[i];
-          const double values[10] = {static_cast<double>(r.frame), static_cast<double>(r.id), r.x,
-                                     r.y, r.w, r.h, r.confidence, -1, -1, -1};
-          for (int c = 0; c < 10; ++c) o(static_cast<py::ssize_t>(i), c) = values[c];
+        return config_dict(config);
+      },
+      py::arg("path"), R"doc(
+Read a YAML or JSON config file, as `vtrack track --config` reads it: a dict with the top-level
+"seed" (if present) and one dict per section ({"background": {...}, "tracker": {...}, ...}).
+Raises vtrack.IoError (an OSError) for a missing, unreadable or unparsable file (naming the line)
+and ValueError for a malformed document.
+)doc");
+
+  m.def(
+      "pipeline_params",
+      [](const std::string& method, const std::string& detector, const py::dict& config,
+         const py::dict& params, const std::vector<std::string>& settings) {
+        const apps::PipelineParams p = pipeline_params(method, detector, config, params, settings);
+        apps::validate(p);
+        py::dict out;
+        for (const auto& section : apps::pipeline_sections(p)) {
+          py::dict values;
+          for (const auto& [name, value] : section.values) {
+            values[name.c_str()] = parameter_to_python(value);
+          }
+          out[section.name.c_str()] = values;
         }
         return out;
       },
-      py::arg("path"), py::arg("method") = "mb", py::kw_only(), py::arg("seed") = 0,
-      py::arg("render") = py::none(), py::arg("background") = py::none(),
-      R"doc(Track the people in a video (or image folder) with vtrack's main pipeline: the KDE
-background model (mb-tbd paper eqs. 6-10) and the multi-Bernoulli track-before-detect filter
-(eqs. 20-24). Returns every frame's tracks as an (N, 10) float64 array of MOTChallenge rows
-frame, id, x, y, w, h, conf, -1, -1, -1 (frames from 1, conf = existence probability; write it
-with vtrack.mot.write_mot). `background` is a dict of KDE parameters (n_samples, period, sigma_r,
-sigma_g, sigma_I, closing, threads); other keyword arguments are tracker parameters (see
-MultiBernoulliTracker.default_params()). `render` writes the annotated video (.avi, .mp4, .mkv).
-The same seed gives the same tracks.)doc");
+      py::arg("method"), py::arg("detector"), py::arg("config"), py::arg("params"),
+      py::arg("settings"),
+      "The compiled half of vtrack.pipelines.pipeline_params (use that): every section's "
+      "parameters.");
+
+  m.def(
+      "track_video",
+      [](const std::filesystem::path& video, const std::string& method,
+         const std::string& detector, const py::dict& config, const py::dict& params,
+         const std::optional<std::filesystem::path>& render, const py::object& progress) {
+        const apps::PipelineParams p = pipeline_params(method, detector, config, params, {});
+        const apps::FrameProgress report = progress_callback(progress);
+        apps::PipelineResult result;
+        {
+          py::gil_scoped_release release;
+          result = apps::track_video(video.string(), p, render ? render->string() : "", report);
+        }
+        return py::make_tuple(track_rows(result.tracks), detection_rows(result.detections),
+                              result.frames);
+      },
+      py::arg("video"), py::arg("method"), py::arg("detector"), py::arg("config"),
+      py::arg("params"), py::arg("render"), py::arg("progress"),
+      "The compiled half of vtrack.track_video (use that): (rows, detections, frames).");
 }
 
 }  // namespace vtrack::bindings

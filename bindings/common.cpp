@@ -53,30 +53,6 @@ std::string type_name(const py::handle& v) {
   return py::str(py::type::of(v).attr("__name__")).cast<std::string>();
 }
 
-apps::ParameterValue parameter_from_python(const std::string& name, const py::handle& v,
-                                           const apps::ParameterValue& kind) {
-  // The default value's alternative says what the parameter takes.
-  if (std::holds_alternative<bool>(kind)) {
-    if (!py::isinstance<py::bool_>(v)) throw py::type_error(name + " must be a bool, got " + type_name(v));
-    return v.cast<bool>();
-  }
-  if (std::holds_alternative<long long>(kind)) {
-    if (py::isinstance<py::bool_>(v) || !PyIndex_Check(v.ptr())) {
-      throw py::type_error(name + " must be an int, got " + type_name(v));
-    }
-    return py::int_(py::reinterpret_borrow<py::object>(v)).cast<long long>();
-  }
-  if (std::holds_alternative<std::string>(kind)) {
-    if (!py::isinstance<py::str>(v)) throw py::type_error(name + " must be a str, got " + type_name(v));
-    return v.cast<std::string>();
-  }
-  // Numbers as Python and NumPy give them (int, float, np.int64, np.float32...), never bool.
-  if (py::isinstance<py::bool_>(v) || py::isinstance<py::str>(v) || !PyNumber_Check(v.ptr())) {
-    throw py::type_error(name + " must be a number, got " + type_name(v));
-  }
-  return py::float_(py::reinterpret_borrow<py::object>(v)).cast<double>();
-}
-
 py::array_t<double> as_vector(const py::handle& obj, const char* name, Nan nan) {
   return as_float64(obj, name, 1, nan);
 }
@@ -130,6 +106,14 @@ cv::Mat depth_image(const py::handle& obj, const char* name, py::array& keep) {
     throw py::type_error(std::string(name) + " must be float32 or float64 metres, got uint8");
   }
   return image;
+}
+
+std::function<void(long long, long long)> progress_callback(const py::object& callback) {
+  return [callback](long long done, long long total) {
+    py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    if (!callback.is_none()) callback(done, total);
+  };
 }
 
 core::Rng& rng_from(const py::handle& rng, core::Rng& storage) {

@@ -1,6 +1,7 @@
 #pragma once
 // Conversion and validation shared by the binding files. Bindings only convert: every check here
 // is about Python types and shapes; value checks live in the C++ library.
+#include <functional>
 #include <string>
 
 #include <pybind11/eigen.h>
@@ -11,7 +12,6 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
-#include "vtrack/apps/parameters.hpp"
 #include "vtrack/core/random.hpp"
 
 namespace vtrack::bindings {
@@ -57,21 +57,24 @@ cv::Mat depth_image(const py::handle& obj, const char* name, py::array& keep);
 // `rng` may be a vtrack.Rng (used and advanced in place) or an int seed (a fresh Rng).
 core::Rng& rng_from(const py::handle& rng, core::Rng& storage);
 
+// The C++ side of a progress callback: after every frame it takes the GIL, lets Python handle a
+// pending signal (Ctrl-C raises KeyboardInterrupt out of the C++ loop) and calls `callback(done,
+// total)` unless it is None. Exceptions from either propagate out of the C++ job.
+std::function<void(long long, long long)> progress_callback(const py::object& callback);
+
 // The Python type name of `value`, for error messages.
 std::string type_name(const py::handle& value);
 
-// A Python value for the parameter `name` whose default is `kind` (bool, int, real or str):
-// TypeError naming the parameter when the value is of another kind.
-apps::ParameterValue parameter_from_python(const std::string& name, const py::handle& value,
-                                           const apps::ParameterValue& kind);
-
 void bind_core(py::module_& m);
 void bind_image(py::module_& m);
+void bind_color(py::module_& m);
 void bind_models(py::module_& m);
 void bind_filters(py::module_& m);
 void bind_glmb(py::module_& m);
 void bind_multi_bernoulli(py::module_& m);
 void bind_apps(py::module_& m);
 void bind_detections(py::module_& m);
+void bind_tracks(py::module_& m);
+void bind_vehicles(py::module_& m);
 
 }  // namespace vtrack::bindings

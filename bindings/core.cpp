@@ -26,7 +26,9 @@ py::array_t<T> draw(core::Rng& rng, py::ssize_t size, Fill fill) {
 
 }  // namespace
 
-void bind_core(py::module_& m) {
+namespace {
+
+void bind_random_and_weights(py::module_& m) {
   py::class_<core::Rng>(m, "Rng", R"doc(
 Seeded random engine (xoshiro256**). The same seed and stream give the same draws on every run
 and platform. `stream` selects one of 2^128 non-overlapping sub-sequences of the seed, for
@@ -110,7 +112,9 @@ independent generators (one per thread or per tracker) from one seed.
       "Ancestor indices (int64, sorted) of `count` draws (default len(weights)) by "
       "'multinomial', 'stratified', 'systematic' or 'residual' resampling. Weights must be "
       "finite, non-negative and not all zero; they need not sum to one.");
+}
 
+void bind_gaussian(py::module_& m) {
   py::class_<core::Gaussian>(m, "Gaussian", "Multivariate normal N(mean, cov).")
       .def(py::init([](const py::handle& mean, const py::handle& cov) {
              auto mu = as_vector(mean, "mean");
@@ -150,6 +154,13 @@ independent generators (one per thread or per tracker) from one seed.
             return py::float_(g.log_density(vector_map(v)));
           },
           py::arg("x"), "Log-density of a point (dim,) or of each row of (n, dim).");
+}
+
+}  // namespace
+
+void bind_core(py::module_& m) {
+  bind_random_and_weights(m);
+  bind_gaussian(m);
 }
 
 }  // namespace vtrack::bindings

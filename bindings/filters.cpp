@@ -22,7 +22,9 @@ std::vector<Eigen::MatrixXd> tracks_from(const py::handle& obj, const char* name
 
 }  // namespace
 
-void bind_filters(py::module_& m) {
+namespace {
+
+void bind_assignment(py::module_& m) {
   m.def(
       "linear_assignment",
       [](const py::handle& cost) {
@@ -97,7 +99,9 @@ each (visits / sweeps estimates the probabilities). k' = 0 for an infeasible mat
 vtrack.Rng (advanced in place) or an int seed. Raises ValueError for NaN or -inf entries, n > m
 or sweeps <= 0.
 )doc");
+}
 
+void bind_metrics(py::module_& m) {
   py::class_<metrics::OspaResult>(m, "OspaResult",
                                   "An OSPA or OSPA(2) distance and its two components.")
       .def_readonly("distance", &metrics::OspaResult::distance)
@@ -177,6 +181,13 @@ OSPA(2) is the OSPA of order p, cut-off c between the track sets under that dist
 usual sliding-window curve, call it on x[:, k - L + 1 : k + 1] and y[:, k - L + 1 : k + 1].
 Returns an OspaResult.
 )doc");
+}
+
+}  // namespace
+
+void bind_filters(py::module_& m) {
+  bind_assignment(m);
+  bind_metrics(m);
 }
 
 }  // namespace vtrack::bindings

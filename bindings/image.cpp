@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "common.hpp"
+#include "params.hpp"
 #include "vtrack/image/color.hpp"
 #include "vtrack/image/integral_image.hpp"
 #include "vtrack/image/kde_background.hpp"
@@ -21,13 +22,13 @@ std::pair<py::array_t<float>, cv::Mat> new_float_image(int rows, int cols) {
 void bind_kde_background(py::module_& m) {
   using image::KdeBackground;
   using image::KdeBackgroundParams;
-  const KdeBackgroundParams defaults;
-  py::class_<KdeBackground>(m, "KdeBackground", R"doc(
+  py::class_<KdeBackground> cls(m, "KdeBackground", R"doc(
 KDE background model on rgI chromaticity (mb-tbd paper, section 3.1, eqs. 6-10).
 
 apply(frame) turns each H x W x 3 uint8 BGR frame into y, an H x W float32 image in [0, 1]
 (near 1 = background): the mean over the sample stack of the product of three Gaussian kernels
-(eq. 10, unnormalised). The stack holds up to `n_samples` (N0) frames taken every `period` (K0)
+(eq. 10, unnormalised). Keyword parameters (KdeBackground.default_params(); the names config
+files and --set take): the stack holds up to `n_samples` (N0) frames taken every `period` (K0)
 frames: frames 0, K0, ..., and from N0*K0 on the oldest is replaced every K0 frames; before it is
 full, y averages over the samples taken so far (frame 0 gives y = 1). `bandwidth` is
 (sigma_r, sigma_g, sigma_I), with I = (R+G+B)/765. `closing` is the side of the square used to
@@ -38,35 +39,10 @@ leave no ghosts (0 = the paper's stack); a pixel is skipped on at most `update_m
 consecutive sample frames. `illumination_compensation` scales the frame's intensity by the ratio
 of mean intensities before comparing it with each sample (a global light change cancels; off =
 eq. 10 as printed). Not safe to share one model between threads.
-)doc")
-      .def(py::init([](int n_samples, int period, const py::handle& bandwidth, int closing,
-                       int threads, double update_threshold, int update_max_skips,
-                       bool illumination_compensation) {
-             const auto sigmas = as_vector(bandwidth, "bandwidth");
-             if (sigmas.size() != 3) {
-               throw py::value_error("bandwidth must hold 3 values (sigma_r, sigma_g, sigma_I), got " +
-                                     std::to_string(sigmas.size()));
-             }
-             KdeBackgroundParams p;
-             p.n_samples = n_samples;
-             p.period = period;
-             p.sigma_r = sigmas.at(0);
-             p.sigma_g = sigmas.at(1);
-             p.sigma_I = sigmas.at(2);
-             p.closing = closing;
-             p.threads = threads;
-             p.update_threshold = update_threshold;
-             p.update_max_skips = update_max_skips;
-             p.illumination_compensation = illumination_compensation;
-             return KdeBackground(p);
-           }),
-           py::kw_only(), py::arg("n_samples") = defaults.n_samples,
-           py::arg("period") = defaults.period,
-           py::arg("bandwidth") = py::make_tuple(defaults.sigma_r, defaults.sigma_g, defaults.sigma_I),
-           py::arg("closing") = defaults.closing, py::arg("threads") = defaults.threads,
-           py::arg("update_threshold") = defaults.update_threshold,
-           py::arg("update_max_skips") = defaults.update_max_skips,
-           py::arg("illumination_compensation") = defaults.illumination_compensation)
+)doc");
+  cls.def(py::init([](const py::kwargs& kwargs) {
+        return KdeBackground(params_from_kwargs<KdeBackgroundParams>(kwargs, "background"));
+      }))
       .def(
           "apply",
           [](KdeBackground& model, const py::handle& frame) {
@@ -90,35 +66,10 @@ eq. 10 as printed). Not safe to share one model between threads.
                              "Frames consumed since construction or reset().")
       .def_property_readonly("sample_frames", &KdeBackground::sample_frames,
                              "Frame indices of the samples in the stack, oldest first.")
-      .def_property_readonly("n_samples", [](const KdeBackground& b) { return b.params().n_samples; })
-      .def_property_readonly("period", [](const KdeBackground& b) { return b.params().period; })
-      .def_property_readonly("bandwidth",
-                             [](const KdeBackground& b) {
-                               const auto& p = b.params();
-                               return py::make_tuple(p.sigma_r, p.sigma_g, p.sigma_I);
-                             })
-      .def_property_readonly("closing", [](const KdeBackground& b) { return b.params().closing; })
-      .def_property_readonly("threads", [](const KdeBackground& b) { return b.params().threads; })
-      .def_property_readonly("update_threshold",
-                             [](const KdeBackground& b) { return b.params().update_threshold; })
-      .def_property_readonly("update_max_skips",
-                             [](const KdeBackground& b) { return b.params().update_max_skips; })
-      .def_property_readonly("illumination_compensation", [](const KdeBackground& b) {
-        return b.params().illumination_compensation;
-      })
       .def("__repr__", [](const KdeBackground& b) {
-        const auto& p = b.params();
-        return "KdeBackground(n_samples=" + std::to_string(p.n_samples) +
-               ", period=" + std::to_string(p.period) + ", bandwidth=(" +
-               py::repr(py::float_(p.sigma_r)).cast<std::string>() + ", " +
-               py::repr(py::float_(p.sigma_g)).cast<std::string>() + ", " +
-               py::repr(py::float_(p.sigma_I)).cast<std::string>() +
-               "), closing=" + std::to_string(p.closing) + ", threads=" + std::to_string(p.threads) +
-               ", update_threshold=" + py::repr(py::float_(p.update_threshold)).cast<std::string>() +
-               ", update_max_skips=" + std::to_string(p.update_max_skips) +
-               ", illumination_compensation=" + (p.illumination_compensation ? "True" : "False") +
-               ")";
+        return "KdeBackground(" + keyword_text(params_dict(b.params())) + ")";
       });
+  def_params<KdeBackgroundParams>(cls, [](const KdeBackground& b) { return b.params(); });
 
   m.def(
       "foreground_mask",

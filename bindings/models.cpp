@@ -3,12 +3,15 @@
 #include <utility>
 
 #include "common.hpp"
+#include "params.hpp"
 #include "vtrack/models/depth_likelihood.hpp"
 #include "vtrack/models/linear_gaussian.hpp"
 
 namespace vtrack::bindings {
 
-void bind_models(py::module_& m) {
+namespace {
+
+void bind_linear_gaussian(py::module_& m) {
   using models::LinearGaussianMotion;
   using models::LinearGaussianObservation;
 
@@ -67,7 +70,9 @@ with noise covariance R (axes x axes). The defaults are the standard GLMB scenar
         return "LinearGaussianObservation(z_dim=" + std::to_string(o.H.rows()) +
                ", x_dim=" + std::to_string(o.H.cols()) + ")";
       });
+}
 
+void bind_depth_likelihood(py::module_& m) {
   using models::DepthLikelihood;
   using models::DepthLikelihoodParams;
   m.def("kinect_raw_to_depth", py::vectorize(&models::kinect_raw_to_depth), py::arg("raw"),
@@ -82,45 +87,31 @@ The inverse of kinect_raw_to_depth (unrounded), for simulating a sensor: w = W_m
 Depth <= 0, NaN, or nearer than the sensor minimum 8 B fx / W_max give 2047 (no reading).
 )doc");
 
-  const DepthLikelihoodParams depth_defaults;
-  py::class_<DepthLikelihood>(m, "DepthLikelihood", R"doc(
+  py::class_<DepthLikelihood> depth(m, "DepthLikelihood", R"doc(
 The depth-intensity likelihood of rgbd-glmb-switching-observation eq. (4) for a pinhole camera:
 the secondary observation of GlmbTracker's switching model.
 
 Camera frame (metres): X right, Y down, D along the optical axis. A person at position (X, Y, D)
 (the centre of its bounding box, as eq. 2's detections) covers T(x), the rectangle of metric size
-person_size = (width, height) projected at depth D: centre (cx + fx X/D, cy + fy Y/D), size
-(fx width/D, fy height/D) pixels, rounded and clipped to the width x height image. On a
-background-subtracted metric depth image d (0 = background/no reading), the log ratio
+person_width x person_height projected at depth D: centre (cx + fx X/D, cy + fy Y/D), size
+(fx person_width/D, fy person_height/D) pixels, rounded and clipped to the width x height image.
+On a background-subtracted metric depth image d (0 = background/no reading), the log ratio
   tempering * sum_{i in T(x)} [log N(d_i; D, sigma_target) - log N(d_i; 0, sigma_background)]
 is computed in O(1) per state from integral images of d and d^2 (sigmas are standard deviations,
 metres). tempering in (0, 1] (1 = the paper's independent pixels) flattens a likelihood that
 treats every pixel as an independent observation; see models/depth_likelihood.hpp.
-fy defaults to fx, (cx, cy) to the image centre ((width - 1)/2, (height - 1)/2).
-)doc")
-      .def(py::init([](int width, int height, double fx, std::optional<double> fy,
-                       std::optional<double> cx, std::optional<double> cy,
-                       std::pair<double, double> person_size, double sigma_target,
-                       double sigma_background, double tempering, double min_depth) {
+fy defaults to fx, (cx, cy) to the image centre ((width - 1)/2, (height - 1)/2). Keyword
+parameters: DepthLikelihood.default_params().
+)doc");
+  depth.def(py::init([](int width, int height, double fx, std::optional<double> fy,
+                        std::optional<double> cx, std::optional<double> cy,
+                        const py::kwargs& kwargs) {
              DepthLikelihoodParams p;
-             p.camera = {fx, fy.value_or(fx), cx.value_or(0.5 * (width - 1)),
-                         cy.value_or(0.5 * (height - 1)), width, height};
-             p.person_width = person_size.first;
-             p.person_height = person_size.second;
-             p.sigma_target = sigma_target;
-             p.sigma_background = sigma_background;
-             p.tempering = tempering;
-             p.min_depth = min_depth;
-             return DepthLikelihood(p);
+             p.camera = models::PinholeCamera::of(width, height, fx, fy, cx, cy);
+             return DepthLikelihood(params_from_kwargs(kwargs, "depth model", p));
            }),
            py::arg("width"), py::arg("height"), py::arg("fx"), py::arg("fy") = py::none(),
-           py::arg("cx") = py::none(), py::arg("cy") = py::none(), py::kw_only(),
-           py::arg("person_size") = std::make_pair(depth_defaults.person_width,
-                                                   depth_defaults.person_height),
-           py::arg("sigma_target") = depth_defaults.sigma_target,
-           py::arg("sigma_background") = depth_defaults.sigma_background,
-           py::arg("tempering") = depth_defaults.tempering,
-           py::arg("min_depth") = depth_defaults.min_depth)
+           py::arg("cx") = py::none(), py::arg("cy") = py::none())
       .def(
           "footprint",
           [](const DepthLikelihood& d, const py::handle& position) {
@@ -157,18 +148,19 @@ The tempered log ratio of eq. (4), log prod_{T(x)} phi_i / varphi_i times temper
       .def_property_readonly("fy", [](const DepthLikelihood& d) { return d.params().camera.fy; })
       .def_property_readonly("cx", [](const DepthLikelihood& d) { return d.params().camera.cx; })
       .def_property_readonly("cy", [](const DepthLikelihood& d) { return d.params().camera.cy; })
-      .def_property_readonly("person_size", [](const DepthLikelihood& d) {
-        return std::make_pair(d.params().person_width, d.params().person_height);
-      })
-      .def_property_readonly("sigma_target", [](const DepthLikelihood& d) { return d.params().sigma_target; })
-      .def_property_readonly("sigma_background",
-                             [](const DepthLikelihood& d) { return d.params().sigma_background; })
-      .def_property_readonly("tempering", [](const DepthLikelihood& d) { return d.params().tempering; })
       .def("__repr__", [](const DepthLikelihood& d) {
         const auto& c = d.params().camera;
         return "DepthLikelihood(" + std::to_string(c.width) + "x" + std::to_string(c.height) +
                ", fx=" + std::to_string(c.fx) + ", tempering=" + std::to_string(d.params().tempering) + ")";
       });
+  def_params<DepthLikelihoodParams>(depth, [](const DepthLikelihood& d) { return d.params(); });
+}
+
+}  // namespace
+
+void bind_models(py::module_& m) {
+  bind_linear_gaussian(m);
+  bind_depth_likelihood(m);
 }
 
 }  // namespace vtrack::bindings

@@ -1,4 +1,4 @@
-"""vtrack.linear_assignment and vtrack.murty against brute-force enumeration and SciPy."""
+"""vtrack.assign.linear_assignment and vtrack.assign.murty against brute-force enumeration and SciPy."""
 
 import itertools
 
@@ -33,7 +33,7 @@ def random_cost(rng, n, m, integer, p_inf):
 
 def check_against_brute_force(cost, k):
     expected = all_assignments(cost)
-    assignments, costs = vtrack.murty(cost, k)
+    assignments, costs = vtrack.assign.murty(cost, k)
     want = min(k, len(expected))
     n = cost.shape[0]
     assert assignments.shape == (want, n) and assignments.dtype == np.int64
@@ -58,7 +58,7 @@ def test_murty_matches_brute_force(seed):
 
 def test_k_above_the_number_of_feasible_assignments():
     cost = np.array([[1.0, np.inf, 2.0], [np.inf, 3.0, 0.0]])  # 3 feasible: 1+0, 1+3, 2+3
-    assignments, costs = vtrack.murty(cost, 10)
+    assignments, costs = vtrack.assign.murty(cost, 10)
     np.testing.assert_array_equal(costs, [1.0, 4.0, 5.0])
     assert sorted(map(tuple, assignments.tolist())) == [(0, 1), (0, 2), (2, 1)]
 
@@ -88,11 +88,11 @@ def test_first_best_equals_scipy():
         cost = rng.normal(size=(n, m))
         cost[rng.random((n, m)) < 0.1] = np.inf
         r, c = linear_sum_assignment(cost)
-        rows, cols = vtrack.linear_assignment(cost)
+        rows, cols = vtrack.assign.linear_assignment(cost)
         np.testing.assert_array_equal(rows, np.arange(n))
         assert len(set(cols.tolist())) == n
         assert cost[rows, cols].sum() == pytest.approx(cost[r, c].sum(), abs=1e-9)
-        _, costs = vtrack.murty(cost, 20)
+        _, costs = vtrack.assign.murty(cost, 20)
         assert costs[0] == pytest.approx(cost[r, c].sum(), abs=1e-9)
         assert np.all(np.diff(costs) >= 0)
 
@@ -100,45 +100,45 @@ def test_first_best_equals_scipy():
 def test_infeasible_matrices():
     cost = np.array([[1.0, np.inf, np.inf], [2.0, np.inf, np.inf]])
     with pytest.raises(ValueError, match="no feasible assignment"):
-        vtrack.linear_assignment(cost)
-    assignments, costs = vtrack.murty(cost, 3)
+        vtrack.assign.linear_assignment(cost)
+    assignments, costs = vtrack.assign.murty(cost, 3)
     assert assignments.shape == (0, 2) and costs.shape == (0,)
 
 
 def test_empty_problem():
-    rows, cols = vtrack.linear_assignment(np.zeros((0, 3)))
+    rows, cols = vtrack.assign.linear_assignment(np.zeros((0, 3)))
     assert rows.shape == cols.shape == (0,)
-    assignments, costs = vtrack.murty(np.zeros((0, 3)), 5)
+    assignments, costs = vtrack.assign.murty(np.zeros((0, 3)), 5)
     assert assignments.shape == (1, 0)
     np.testing.assert_array_equal(costs, [0.0])
 
 
 def test_accepts_integer_and_non_contiguous_input():
     cost = np.arange(12).reshape(4, 3)  # int64, transposed below
-    _, c1 = vtrack.murty(cost.T, 4)
-    _, c2 = vtrack.murty(np.ascontiguousarray(cost.T, dtype=np.float64), 4)
+    _, c1 = vtrack.assign.murty(cost.T, 4)
+    _, c2 = vtrack.assign.murty(np.ascontiguousarray(cost.T, dtype=np.float64), 4)
     np.testing.assert_array_equal(c1, c2)
 
 
 def test_bad_input():
     with pytest.raises(ValueError, match="cost contains NaN"):
-        vtrack.murty(np.array([[0.0, np.nan]]), 1)
+        vtrack.assign.murty(np.array([[0.0, np.nan]]), 1)
     with pytest.raises(ValueError, match="cost contains NaN"):
-        vtrack.linear_assignment(np.array([[np.nan]]))
+        vtrack.assign.linear_assignment(np.array([[np.nan]]))
     with pytest.raises(ValueError, match=r"n <= m.*\(3, 2\)"):
-        vtrack.linear_assignment(np.zeros((3, 2)))
+        vtrack.assign.linear_assignment(np.zeros((3, 2)))
     with pytest.raises(ValueError, match="k must be >= 1, got 0"):
-        vtrack.murty(np.zeros((2, 2)), 0)
+        vtrack.assign.murty(np.zeros((2, 2)), 0)
     with pytest.raises(ValueError, match="got -2"):
-        vtrack.murty(np.zeros((2, 2)), -2)
+        vtrack.assign.murty(np.zeros((2, 2)), -2)
     with pytest.raises(ValueError, match="-inf"):
-        vtrack.murty(np.array([[-np.inf, 0.0]]), 1)
+        vtrack.assign.murty(np.array([[-np.inf, 0.0]]), 1)
     with pytest.raises(ValueError, match="cost must be 2-D"):
-        vtrack.murty(np.zeros(3), 1)
+        vtrack.assign.murty(np.zeros(3), 1)
     with pytest.raises(TypeError, match="cost"):
-        vtrack.linear_assignment(np.array([["a", "b"]]))
+        vtrack.assign.linear_assignment(np.array([["a", "b"]]))
     with pytest.raises(TypeError):
-        vtrack.murty(np.zeros((2, 2)), 1.5)
+        vtrack.assign.murty(np.zeros((2, 2)), 1.5)
 
 
 def test_threads_get_the_same_results():
@@ -147,9 +147,9 @@ def test_threads_get_the_same_results():
 
     rng = np.random.default_rng(9)
     costs = [rng.random((30, 40)) for _ in range(8)]
-    expected = [vtrack.murty(c, 50)[1] for c in costs]
+    expected = [vtrack.assign.murty(c, 50)[1] for c in costs]
     with ThreadPoolExecutor(max_workers=4) as pool:
-        got = list(pool.map(lambda c: vtrack.murty(c, 50)[1], costs))
+        got = list(pool.map(lambda c: vtrack.assign.murty(c, 50)[1], costs))
     for e, g in zip(expected, got):
         np.testing.assert_array_equal(e, g)
 
@@ -164,7 +164,7 @@ def test_gibbs_visit_frequencies_match_the_assignment_weights():
     weights = np.exp(-np.array([c for c, _ in expected]))
     probability = dict(zip([tuple(a) for _, a in expected], weights / weights.sum()))
     sweeps = 40_000
-    assignments, costs, visits = vtrack.gibbs_assignments(cost, sweeps, rng=1)
+    assignments, costs, visits = vtrack.assign.gibbs_assignments(cost, sweeps, rng=1)
     assert visits.sum() == sweeps and visits.dtype == np.int64
     visited = {tuple(a): v for a, v in zip(assignments.tolist(), visits.tolist())}
     assert set(visited) <= set(probability)
@@ -179,7 +179,7 @@ def test_gibbs_results_are_distinct_sorted_and_start_at_the_optimum():
         n = 1 + trial % 4
         cost = random_cost(rng, n, n + 4, integer=trial % 2 == 0, p_inf=0.2)
         expected = all_assignments(cost)
-        assignments, costs, visits = vtrack.gibbs_assignments(cost, 150, rng=trial)
+        assignments, costs, visits = vtrack.assign.gibbs_assignments(cost, 150, rng=trial)
         if not expected:
             assert assignments.shape == (0, n) and costs.size == 0
             continue
@@ -187,9 +187,9 @@ def test_gibbs_results_are_distinct_sorted_and_start_at_the_optimum():
         assert np.all(np.diff(costs) >= 0) and visits.sum() == 150
         np.testing.assert_allclose(cost[np.arange(n), assignments].sum(axis=1), costs, atol=1e-9)
         assert len({tuple(a) for a in assignments.tolist()}) == len(costs)
-    same = [vtrack.gibbs_assignments(cost, 100, rng=vtrack.Rng(3)) for _ in range(2)]
+    same = [vtrack.assign.gibbs_assignments(cost, 100, rng=vtrack.Rng(3)) for _ in range(2)]
     np.testing.assert_array_equal(same[0][0], same[1][0])
     with pytest.raises(ValueError, match="sweeps"):
-        vtrack.gibbs_assignments(np.zeros((2, 3)), 0)
+        vtrack.assign.gibbs_assignments(np.zeros((2, 3)), 0)
     with pytest.raises(ValueError, match="NaN"):
-        vtrack.gibbs_assignments(np.array([[np.nan, 1.0]]), 5)
+        vtrack.assign.gibbs_assignments(np.array([[np.nan, 1.0]]), 5)

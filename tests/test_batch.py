@@ -5,6 +5,7 @@ import csv
 import json
 import os
 import signal
+import socket
 import subprocess
 import sys
 import threading
@@ -15,10 +16,11 @@ import pytest
 
 import vtrack
 from vtrack.evaluate import evaluate
-from vtrack.mot import read_mot, write_mot
+from vtrack.io import read_mot, write_mot
 from vtrack.synthetic import make_scene
 
 distributed = pytest.importorskip("distributed")
+dask = pytest.importorskip("dask")
 cv2 = pytest.importorskip("cv2")
 
 from vtrack import batch  # noqa: E402
@@ -135,7 +137,11 @@ def test_batch_equals_sequential_cli_and_reports_bad_inputs(data, references, cl
         run = json.loads((folder / "run.json").read_text())
         assert run["status"] == "ok" and run["seed"] == SEED and run["frames"] == FRAMES
         assert run["vtrack_version"] == vtrack.__version__
-        assert run["parameters"]["params"] == SETTINGS and run["parameters"]["method"] == "mb"
+        # Every parameter in force is recorded: the defaults with SETTINGS routed by name.
+        expected_sections = vtrack.pipelines.pipeline_params("mb", seed=SEED, **SETTINGS)
+        expected_sections["background"]["threads"] = 1  # the batch's one thread per worker
+        assert run["parameters"]["parameters"] == json.loads(json.dumps(expected_sections))
+        assert run["parameters"]["method"] == "mb"
         assert run["input"] == str(root / ("frames/s3/img1" if name == "s3" else f"clips/{name}.avi"))
     # The tracker found people (the comparison above is not of empty files).
     assert float(by_name["s1"]["MOTA"]) > 0.3, by_name["s1"]
@@ -193,7 +199,7 @@ def test_config_file_is_read_as_vtrack_track_reads_it(data, vtrack_cli, client, 
     video = data[0] / "clips" / "s2.avi"
     config = tmp_path / "params.yml"
     tracker = {k: v for k, v in SETTINGS.items() if k != "period"}
-    config.write_text("%YAML:1.0\nseed: 5\nbackground:\n  period: 2\n  n_samples: 8\n"
+    config.write_text("seed: 5\nbackground:\n  period: 2\n  n_samples: 8\n"
                       "tracker:\n" + "".join(f"  {k}: {v}\n" for k, v in tracker.items()))
     reference = tmp_path / "reference.txt"
     result = vtrack_cli("track", video, "--out", reference, "--config", config, "--set",
@@ -201,15 +207,16 @@ def test_config_file_is_read_as_vtrack_track_reads_it(data, vtrack_cli, client, 
     assert result.returncode == 0, result.stderr
     runs = batch.track_many([video], tmp_path / "out", client=client, config=config, delta_f=0.2)
     assert runs[0]["status"] == "ok" and runs[0]["seed"] == 5
-    assert runs[0]["parameters"]["config"]["background"] == {"period": 2, "n_samples": 8}
+    background = runs[0]["parameters"]["parameters"]["background"]
+    assert (background["period"], background["n_samples"]) == (2, 8)
+    assert runs[0]["parameters"]["parameters"]["tracker"]["delta_f"] == 0.2
     assert (tmp_path / "out" / "s2" / "tracks.txt").read_bytes() == reference.read_bytes()
 
 
 def _sequential_bytes(video, folder):
     """tracks.txt of a plain sequential run: vtrack.track_video then write_mot."""
     path = folder / f"{Path(video).stem}.expected.txt"
-    tracker = {k: v for k, v in SETTINGS.items() if k != "period"}
-    write_mot(path, vtrack.track_video(video, seed=SEED, background={"period": 2}, **tracker))
+    write_mot(path, vtrack.track_video(video, "mb", seed=SEED, **SETTINGS))
     return path.read_bytes()
 
 
@@ -262,7 +269,7 @@ def test_worker_killed_mid_task_is_retried_and_outputs_are_whole(client, tmp_pat
         name = v.stem
         assert runs[name]["status"] == "ok", runs[name]
         assert (out / name / "tracks.txt").read_bytes() == _sequential_bytes(v, tmp_path)
-        assert vtrack.probe_video(out / name / "render.mp4").frame_count == 150
+        assert vtrack.io.probe_video(out / name / "render.mp4").frame_count == 150
     assert _leftovers(out) == []
 
 
@@ -338,6 +345,12 @@ def test_usage_errors_exit_2_before_anything_runs(data, capsys, tmp_path):
         ((video, "--out", out, "--workers", "0"), "--workers"),
         ((video, "--out", out, "--gt", "{nope}/gt.txt"), "--gt"),
         ((video, "--out", out, "--workers", "2", "--scheduler", "tcp://x:1"), "--scheduler"),
+        ((video, "--out", out, "--seed", "-1"), "seed"),
+        ((video, "--out", out, "--config", tmp_path / "none.yml"), "none.yml"),
+        ((video, "--out", out, "--method", "glmb"), "detector"),
+        ((video, "--out", root / "clips"), "overlaps the input"),
+        ((root / "frames", "--out", root / "frames" / "s3" / "out"), "overlaps the input"),
+        ((video, "--out", video), "not a folder"),
     ]
     for args, message in cases:
         try:
@@ -348,6 +361,18 @@ def test_usage_errors_exit_2_before_anything_runs(data, capsys, tmp_path):
         assert status == 2, (args, err)
         assert "vtrack: error: " in err and message in err, (args, err)
     assert not out.exists()  # found before anything ran
+    assert not (root / "frames" / "s3" / "out").exists()
+
+
+def test_unreachable_scheduler_is_a_clear_error(data, capsys, tmp_path):
+    with socket.socket() as s:  # a port nothing listens on
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    with dask.config.set({"distributed.comm.timeouts.connect": "2s"}):
+        status = batch.main([str(data[0] / "clips" / "s1.avi"), "--out", str(tmp_path / "out"),
+                             "--scheduler", f"tcp://127.0.0.1:{port}", "--quiet"])
+    err = capsys.readouterr().err
+    assert status == 1 and f"cannot reach the Dask scheduler at tcp://127.0.0.1:{port}" in err, err
 
 
 def test_cli_hands_batch_to_python(vtrack_cli, data, tmp_path):
@@ -396,9 +421,22 @@ def test_inputs_names_are_unique_and_independent_of_order(tmp_path):
     assert len(set(names)) == 3 and names[2] == "z__c", names
     with pytest.raises(batch.UsageError, match="matches nothing"):
         batch.expand_inputs([str(tmp_path / "*.mkv")])
-    assert batch.parse_setting("a=1") == ("a", 1)
-    assert batch.parse_setting("a=1.5") == ("a", 1.5)
-    assert batch.parse_setting("a=true") == ("a", True)
-    assert batch.parse_setting("resampling=residual") == ("resampling", "residual")
-    with pytest.raises(batch.UsageError):
-        batch.parse_setting("novalue")
+
+
+def test_settings_are_read_by_the_cli_parser_and_override_keywords():
+    """--set texts go through the C++ parser (`vtrack params` prints the same values): true/false,
+    integers, reals, lists of reals, names; they override keywords, keywords the config."""
+    job = batch.make_job("mb", settings=["period=2", "bandwidth=0.01,0.02,0.05",
+                                         "resampling=residual", "seed=7"], seed=3, period=5)
+    sections = job["parameters"]
+    assert sections["background"]["period"] == 2 and sections["tracker"]["seed"] == 7
+    assert sections["background"]["bandwidth"] == [0.01, 0.02, 0.05]
+    assert sections["tracker"]["resampling"] == "residual"
+    assert sections["background"]["threads"] == 1  # left at its default: one per worker
+    assert batch.make_job("mb", threads=2)["parameters"]["background"]["threads"] == 2
+    with pytest.raises(ValueError, match="name=value"):
+        batch.make_job("mb", settings=["novalue"])
+    with pytest.raises(TypeError, match="no_such"):
+        batch.make_job("mb", settings=["no_such=1"])
+    with pytest.raises(ValueError, match="detector"):
+        batch.make_job("glmb")

@@ -22,7 +22,7 @@ def test_info_on_the_sample_video(vtrack_cli, sample_video):
     assert lines["frames"] == "795"          # PETS2009 S2.L1 View 001
     assert lines["size"] == "768x576"
     assert float(lines["fps"]) == 10.0        # what the AVI header says (SOURCE.md)
-    info = vtrack.probe_video(sample_video)
+    info = vtrack.io.probe_video(sample_video)
     assert (info.frame_count, info.width, info.height) == (795, 768, 576)
 
 
@@ -67,6 +67,6 @@ def test_errors_are_reported_not_crashed(vtrack_cli, write_video, tmp_path):
 
 def test_python_probe_video_errors(tmp_path):
     with pytest.raises(OSError, match="no such file"):
-        vtrack.probe_video(tmp_path / "missing.avi")
+        vtrack.io.probe_video(tmp_path / "missing.avi")
     with pytest.raises(vtrack.IoError):
-        vtrack.probe_video(tmp_path)
+        vtrack.io.probe_video(tmp_path)

@@ -6,7 +6,7 @@ from scipy import special, stats
 
 import vtrack
 
-METHODS = vtrack.RESAMPLING_METHODS
+METHODS = vtrack.smc.RESAMPLING_METHODS
 
 
 def test_rng_same_seed_same_draws_and_streams_differ():
@@ -31,27 +31,27 @@ def test_rng_distributions_pass_kolmogorov_smirnov():
 
 def test_log_sum_exp_matches_scipy():
     x = vtrack.Rng(1).normal(1000) * 50
-    assert vtrack.log_sum_exp(x) == pytest.approx(special.logsumexp(x), rel=1e-13)
-    assert vtrack.log_sum_exp([]) == -np.inf
-    assert vtrack.log_sum_exp([-np.inf, -np.inf]) == -np.inf
+    assert vtrack.smc.log_sum_exp(x) == pytest.approx(special.logsumexp(x), rel=1e-13)
+    assert vtrack.smc.log_sum_exp([]) == -np.inf
+    assert vtrack.smc.log_sum_exp([-np.inf, -np.inf]) == -np.inf
 
 
 def test_normalize_log_weights_and_all_vanishing_case():
     x = np.array([np.log(1.0), np.log(3.0), -np.inf]) - 800.0
-    w, total = vtrack.normalize_log_weights(x)
+    w, total = vtrack.smc.normalize_log_weights(x)
     np.testing.assert_allclose(w, [0.25, 0.75, 0.0], atol=1e-15)
     assert total == pytest.approx(np.log(4.0) - 800.0)
-    w, total = vtrack.normalize_log_weights(np.full(4, -np.inf))
+    w, total = vtrack.smc.normalize_log_weights(np.full(4, -np.inf))
     assert total == -np.inf and not np.isnan(w).any()
     np.testing.assert_array_equal(w, np.full(4, 0.25))
 
 
 def test_effective_sample_size_is_eq7():
     w = np.array([0.1, 0.2, 0.7])
-    assert vtrack.effective_sample_size(w) == pytest.approx(1.0 / np.sum(w**2))
-    assert vtrack.effective_sample_size(np.log(w) + 300, log=True) == pytest.approx(1 / 0.54)
-    assert vtrack.effective_sample_size(np.zeros(3)) == 0.0
-    assert vtrack.effective_sample_size(np.full(3, -np.inf), log=True) == 0.0
+    assert vtrack.smc.effective_sample_size(w) == pytest.approx(1.0 / np.sum(w**2))
+    assert vtrack.smc.effective_sample_size(np.log(w) + 300, log=True) == pytest.approx(1 / 0.54)
+    assert vtrack.smc.effective_sample_size(np.zeros(3)) == 0.0
+    assert vtrack.smc.effective_sample_size(np.full(3, -np.inf), log=True) == 0.0
 
 
 @pytest.mark.parametrize("method", METHODS)
@@ -65,7 +65,7 @@ def test_resampling_is_unbiased(method):
     n, trials = 12, 20_000
     counts = np.zeros(n)
     for _ in range(trials):
-        counts += np.bincount(vtrack.resample(w, rng, method=method), minlength=n)
+        counts += np.bincount(vtrack.smc.resample(w, rng, method=method), minlength=n)
     mean = counts / trials
     tolerance = 5 * np.sqrt(n * w * (1 - w) / trials) + 1e-12
     assert np.all(np.abs(mean - n * w) <= tolerance)
@@ -75,30 +75,30 @@ def test_resampling_is_unbiased(method):
 @pytest.mark.parametrize("method", METHODS)
 def test_resample_count_order_and_reproducibility(method):
     w = np.linspace(0.0, 1.0, 30)
-    a = vtrack.resample(w, 7, count=95, method=method)
+    a = vtrack.smc.resample(w, 7, count=95, method=method)
     assert a.dtype == np.int64 and a.shape == (95,)
     assert np.all(np.diff(a) >= 0) and a.min() >= 1 and a.max() <= 29
-    np.testing.assert_array_equal(a, vtrack.resample(w, 7, count=95, method=method))
+    np.testing.assert_array_equal(a, vtrack.smc.resample(w, 7, count=95, method=method))
 
 
 def test_resample_rejects_bad_input():
     rng = vtrack.Rng(0)
     with pytest.raises(TypeError, match="weights"):
-        vtrack.resample(np.array(["a", "b"]), rng)
+        vtrack.smc.resample(np.array(["a", "b"]), rng)
     with pytest.raises(ValueError, match="weights"):
-        vtrack.resample(np.ones((2, 2)), rng)
+        vtrack.smc.resample(np.ones((2, 2)), rng)
     with pytest.raises(ValueError, match="NaN"):
-        vtrack.resample([0.5, np.nan], rng)
+        vtrack.smc.resample([0.5, np.nan], rng)
     with pytest.raises(ValueError, match="non-negative"):
-        vtrack.resample([0.5, -0.5, 1.0], rng)
+        vtrack.smc.resample([0.5, -0.5, 1.0], rng)
     with pytest.raises(ValueError, match="all zero"):
-        vtrack.resample([0.0, 0.0], rng)
+        vtrack.smc.resample([0.0, 0.0], rng)
     with pytest.raises(ValueError, match="unknown resampling scheme"):
-        vtrack.resample([1.0], rng, method="bogus")
+        vtrack.smc.resample([1.0], rng, method="bogus")
     with pytest.raises(ValueError, match="count"):
-        vtrack.resample([1.0], rng, count=-1)
+        vtrack.smc.resample([1.0], rng, count=-1)
     with pytest.raises(TypeError, match="rng"):
-        vtrack.resample([1.0], rng="seed")
+        vtrack.smc.resample([1.0], rng="seed")
     assert issubclass(vtrack.InvalidArgument, ValueError)
 
 

@@ -1,4 +1,4 @@
-"""vtrack.mot (MOTChallenge text) and vtrack.evaluate (TrackEval metrics) on hand-made cases."""
+"""vtrack.io (MOTChallenge text) and vtrack.evaluate (TrackEval metrics) on hand-made cases."""
 
 import subprocess
 import sys
@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from vtrack.evaluate import box_iou_matrix, evaluate, main
-from vtrack.mot import read_mot, track_rows, write_mot
+from vtrack.io import mot_rows, read_mot, write_mot
 
 
 def row(frame, ident, x, y, w=10, h=20, conf=1):
@@ -83,7 +83,7 @@ def test_mot_round_trip(tmp_path):
     rows = [row(1, 3, 1.5, 2.25, 10.5, 20.75, 0.9), row(2, 4, -3, 4, 5, 6, 1)]
     path = tmp_path / "t.txt"
     write_mot(path, rows)
-    # The C++ writer's format (vtrack track), so both write the same bytes for the same rows.
+    # The CLI's format (one writer): boxes to 2 decimals, conf to 4.
     assert path.read_text().splitlines()[0] == "1,3,1.50,2.25,10.50,20.75,0.9000,-1,-1,-1"
     np.testing.assert_allclose(read_mot(path), np.array(rows, float))
     assert list(tmp_path.iterdir()) == [path]  # no temporary file left
@@ -119,9 +119,26 @@ def test_failed_write_keeps_old_file(tmp_path):
     assert list(tmp_path.iterdir()) == [path]
 
 
-def test_track_rows():
-    class T:
-        label, x, y, w, h, existence = 7, 1.0, 2.0, 3.0, 4.0, 0.9
-    assert track_rows(3, [T()]) == [(3, 7, 1.0, 2.0, 3.0, 4.0, 0.9, -1, -1, -1)]
+def test_mot_rows_of_any_tracker():
+    import vtrack
+    box = vtrack.BoxTracker((640, 480))
+    for frame in range(1, 4):
+        tracks = box.step(np.array([[100.0 + frame, 100, 40, 100], [400, 200, 40, 100]]))
+    assert len(tracks) == 2
+    rows = mot_rows(3, tracks)
+    assert rows.shape == (2, 10)
+    np.testing.assert_array_equal(rows[:, 0], 3)
+    np.testing.assert_array_equal(rows[:, 1], tracks.ids)
+    np.testing.assert_allclose(rows[:, 2:6], tracks.boxes, rtol=1e-6)  # float32 boxes in rows
+    np.testing.assert_array_equal(rows[:, 6], tracks.scores)
+    np.testing.assert_array_equal(rows[:, 7:], -1)
     with pytest.raises(ValueError, match="1-based"):
-        track_rows(0, [])
+        mot_rows(0, tracks)
+    # A tracker on a state space that is no image box has no rows to give.
+    scenario = vtrack.scenarios.standard_glmb_scenario(seed=0)
+    glmb = scenario.tracker()
+    for z in scenario.measurements[:12]:
+        points = glmb.step(z)
+    assert len(points) > 0 and np.isnan(points.boxes).all()
+    with pytest.raises(ValueError, match="no image box"):
+        mot_rows(12, points)

@@ -21,12 +21,12 @@ def test_bgr_to_rgi_matches_equations():
     frame = rng.integers(0, 256, (37, 53, 3), dtype=np.uint8)
     frame[0, 0] = 0
     frame[1, 1] = 255
-    out = vtrack.bgr_to_rgi(frame)
+    out = vtrack.image.bgr_to_rgi(frame)
     assert out.dtype == np.float32 and out.shape == (37, 53, 3)
     np.testing.assert_allclose(out, rgi_reference(frame), atol=1e-6)
     # A non-contiguous view (every other column) gives the same as its contiguous copy.
-    np.testing.assert_array_equal(vtrack.bgr_to_rgi(frame[:, ::2]),
-                                  vtrack.bgr_to_rgi(np.ascontiguousarray(frame[:, ::2])))
+    np.testing.assert_array_equal(vtrack.image.bgr_to_rgi(frame[:, ::2]),
+                                  vtrack.image.bgr_to_rgi(np.ascontiguousarray(frame[:, ::2])))
 
 
 @pytest.mark.parametrize(
@@ -40,14 +40,14 @@ def test_bgr_to_rgi_matches_equations():
 )
 def test_bgr_to_rgi_rejects_bad_frames(frame, error, match):
     with pytest.raises(error, match=match):
-        vtrack.bgr_to_rgi(frame)
+        vtrack.image.bgr_to_rgi(frame)
 
 
 @pytest.mark.parametrize("dtype", [np.uint8, np.float32, np.float64])
 def test_integral_image_matches_numpy_sums(dtype):
     rng = np.random.default_rng(2)
     image = (rng.random((41, 67)) * 200).astype(dtype)
-    ii = vtrack.IntegralImage(image)
+    ii = vtrack.image.IntegralImage(image)
     assert ii.shape == (41, 67)
     rects = np.column_stack([
         rng.integers(-20, 87, 300), rng.integers(-20, 61, 300),
@@ -66,8 +66,8 @@ def test_integral_image_matches_numpy_sums(dtype):
 
 def test_integral_image_rejects_bad_images():
     with pytest.raises(TypeError, match="image"):
-        vtrack.IntegralImage(np.zeros((3, 3), np.int16))
+        vtrack.image.IntegralImage(np.zeros((3, 3), np.int16))
     with pytest.raises(ValueError, match="image"):
-        vtrack.IntegralImage(np.zeros((3, 3, 3), np.float32))
+        vtrack.image.IntegralImage(np.zeros((3, 3, 3), np.float32))
     with pytest.raises(ValueError, match="rects"):
-        vtrack.IntegralImage(np.zeros((3, 3), np.float32)).sums(np.zeros((2, 3)))
+        vtrack.image.IntegralImage(np.zeros((3, 3), np.float32)).sums(np.zeros((2, 3)))

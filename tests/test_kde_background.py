@@ -33,18 +33,18 @@ def expected_schedule(k, n_samples, period):
 # ---- eq. (10) ------------------------------------------------------------------------------------
 
 def test_reference_rgi_matches_bgr_to_rgi():
-    # The reference's rgI is the documented conversion of vtrack.bgr_to_rgi (independent check
+    # The reference's rgI is the documented conversion of vtrack.image.bgr_to_rgi (independent check
     # that the two agree on conventions: I = S/765, black -> r = g = 1/3).
     frame = np.random.default_rng(0).integers(0, 256, (9, 11, 3), dtype=np.uint8)
     frame[0, 0] = 0
-    np.testing.assert_allclose(vtrack.bgr_to_rgi(frame), rgi_float64(frame), atol=1e-6)
+    np.testing.assert_allclose(vtrack.image.bgr_to_rgi(frame), rgi_float64(frame), atol=1e-6)
 
 
 @pytest.mark.parametrize("n_samples,period", [(4, 3), (10, 2)])
 def test_matches_numpy_transcription_on_video_frame_by_frame(video_frames, n_samples, period):
     # update_threshold=0: the paper's stack (every K0-th frame whole), which the reference follows.
     model = vtrack.KdeBackground(n_samples=n_samples, period=period, closing=0, update_threshold=0)
-    ref = KdeBackgroundReference(n_samples, period, model.bandwidth)
+    ref = KdeBackgroundReference(n_samples, period, model.params["bandwidth"])
     frames = video_frames if n_samples == 4 else video_frames[:24]
     for k, frame in enumerate(frames):
         y = model.apply(frame)
@@ -103,7 +103,7 @@ def test_closing_is_morphological_closing_of_y(video_frames):
         y_plain, y_closed = plain.apply(frame), closed.apply(frame)
     expected = cv2.morphologyEx(y_plain, cv2.MORPH_CLOSE, np.ones((5, 5), np.uint8))
     np.testing.assert_array_equal(y_closed, expected)
-    np.testing.assert_array_equal(vtrack.close_square(y_plain, 5), expected)
+    np.testing.assert_array_equal(vtrack.image.close_square(y_plain, 5), expected)
     assert (y_closed >= y_plain).all()  # closing is extensive
     assert (y_closed < 0.5).sum() < (y_plain < 0.5).sum()  # it removed foreground specks
 
@@ -132,13 +132,13 @@ def test_freeze_resume_reset():
 
 def test_foreground_mask():
     y = np.array([[0.0, 0.2, 0.5], [0.7, 1.0, 0.49]], np.float32)
-    mask = vtrack.foreground_mask(y, threshold=0.5)
+    mask = vtrack.image.foreground_mask(y, threshold=0.5)
     assert mask.dtype == np.uint8
     np.testing.assert_array_equal(mask, np.where(y < 0.5, 255, 0))
     with pytest.raises(ValueError, match="threshold"):
-        vtrack.foreground_mask(y, threshold=1.5)
+        vtrack.image.foreground_mask(y, threshold=1.5)
     with pytest.raises(TypeError, match="y"):
-        vtrack.foreground_mask(y.astype(np.float64), threshold=0.5)
+        vtrack.image.foreground_mask(y.astype(np.float64), threshold=0.5)
 
 
 # ---- bad input -----------------------------------------------------------------------------------
@@ -166,7 +166,7 @@ def test_bad_frames():
     (dict(bandwidth=(0.02, 0.0, 0.1)), ValueError, "sigma_g"),
     (dict(bandwidth=(-1, 0.02, 0.1)), ValueError, "sigma_r"),
     (dict(bandwidth=(0.02, 0.02, float("nan"))), ValueError, "bandwidth"),
-    (dict(bandwidth=(0.02, 0.02)), ValueError, "bandwidth must hold 3 values"),
+    (dict(bandwidth=(0.02, 0.02)), ValueError, "bandwidth must hold 3 numbers"),
     (dict(bandwidth="wide"), TypeError, "bandwidth"),
     (dict(closing=2), ValueError, "closing"),
     (dict(threads=-2), ValueError, "threads"),
@@ -192,8 +192,10 @@ def test_cli_writes_the_y_images_of_the_python_api(vtrack_cli, small_frames, tmp
     for i, f in enumerate(small_frames):
         cv2.imwrite(str(folder / f"{i:04d}.png"), f)
     out = tmp_path / "y"
-    proc = vtrack_cli("bgs", folder, "--out", out, "--samples", 4, "--period", 3,
-               "--bandwidth", "0.03,0.02,0.08", "--closing", 3, "--threads", 1)
+    config = tmp_path / "bgs.yml"
+    config.write_text("background: {n_samples: 4, period: 3, bandwidth: [0.03, 0.02, 0.08]}\n")
+    proc = vtrack_cli("bgs", folder, "--out", out, "--config", config, "--set", "closing=3",
+                      "--set", "threads=1")
     assert proc.returncode == 0, proc.stderr
     assert "bgs: frame 20/20" in proc.stderr
     assert proc.stdout.strip() == f"wrote 20 y images to {out} (PNG folder)"
@@ -244,12 +246,14 @@ def test_cli_truncated_video_names_the_frame_and_keeps_complete_images(vtrack_cl
 
 
 @pytest.mark.parametrize("args,status,match", [
-    (["--samples", "0"], 2, "n_samples"),
-    (["--period", "-1"], 2, "period"),
-    (["--bandwidth", "0.02,0,0.1"], 2, "sigma_g"),
-    (["--bandwidth", "0.02,0.1"], 2, "three numbers"),
-    (["--closing", "x"], 2, "--closing expects an integer"),
-    (["--threads", "-1"], 2, "threads"),
+    (["--set", "n_samples=0"], 2, "n_samples"),
+    (["--set", "period=-1"], 2, "period"),
+    (["--set", "bandwidth=0.02,0,0.1"], 2, "sigma_g"),
+    (["--set", "bandwidth=0.02,0.1"], 2, "bandwidth must be 3 numbers"),
+    (["--set", "closing=x"], 2, "closing must be an integer"),
+    (["--set", "threads=-1"], 2, "threads"),
+    (["--set", "n_sample=3"], 2, "did you mean 'n_samples'"),
+    (["--samples", "4"], 2, "unknown option '--samples'"),
     ([], 2, "--out"),
 ])
 def test_cli_bad_arguments(vtrack_cli, sample_video, tmp_path, args, status, match):

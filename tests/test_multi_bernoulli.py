@@ -7,7 +7,7 @@ import pytest
 
 import vtrack
 from vtrack.evaluate import evaluate
-from vtrack.mot import read_mot, track_rows, write_mot
+from vtrack.io import mot_rows, read_mot, write_mot
 from vtrack.synthetic import make_scene, render_y
 
 
@@ -33,7 +33,7 @@ def test_defaults_and_params():
     assert t.params["delta_f"] == 0.2 and t.params["max_particles"] == 100
     assert t.params["quarter_birth"] is False and t.params["resampling"] == "residual"
     assert t.image_size == (160, 120) and t.frame == 0
-    assert t.step(np.ones((120, 160), np.float32)) == [] and t.frame == 1
+    assert len(t.step(np.ones((120, 160), np.float32))) == 0 and t.frame == 1
 
 
 @pytest.mark.parametrize("kwargs, exc, words", [
@@ -60,7 +60,7 @@ def test_bad_parameters(kwargs, exc, words):
 def test_bad_image_size_and_images():
     with pytest.raises(TypeError, match="image_size"):
         vtrack.MultiBernoulliTracker(160)
-    with pytest.raises(ValueError, match="image_size"):
+    with pytest.raises(TypeError, match="image_size"):
         vtrack.MultiBernoulliTracker((160, 120, 3))
     with pytest.raises(ValueError, match="width"):
         vtrack.MultiBernoulliTracker((0, 120))
@@ -91,18 +91,20 @@ def test_one_person_one_label_and_components_exposed():
         tracks = t.step(y)
         if k >= 3:
             assert len(tracks) == 1
-            labels.add(tracks[0].label)
-            x, yy, w, h = tracks[0].box
+            labels.add(int(tracks.ids[0]))
+            x, yy, w, h = tracks.boxes[0]
             assert abs(x - (40 + k)) < 3 and abs(yy - 50) < 3
-            assert 0.5 < tracks[0].existence <= 1.0
+            assert 0.5 < tracks.scores[0] <= 1.0
+            # The filter's own box is the state: the reported box calibrated (scales 1 here).
+            np.testing.assert_allclose(tracks.states[0], tracks.boxes[0], rtol=1e-6)
     assert len(labels) == 1
-    assert "Track(label=" in repr(tracks[0])
+    assert repr(tracks) == f"Tracks(ids=[{labels.pop()}])"
     comps = t.components
-    assert any(c.label in labels for c in comps)
+    assert any(c.label == tracks.ids[0] for c in comps)
     c = comps[0]
     assert c.particles.shape == (len(c.weights), 4) and c.particles.dtype == np.float32
     assert c.weights.sum() == pytest.approx(1.0)
-    assert t.tracks[0].label == tracks[0].label
+    assert t.tracks.ids[0] == tracks.ids[0]
     # Snapshots stay valid after further steps (they are copies, not views into the filter).
     before = [(c.label, c.existence, c.particles.copy()) for c in comps]
     for _ in range(3):
@@ -115,8 +117,8 @@ def test_all_background_and_all_foreground_no_nan():
     t = vtrack.MultiBernoulliTracker((160, 120), seed=3)
     for y in (np.ones((120, 160), np.float32), np.zeros((120, 160), np.float32)):
         for _ in range(5):
-            for tr in t.step(y):
-                assert np.all(np.isfinite(tr.box)) and np.isfinite(tr.existence)
+            tracks = t.step(y)
+            assert np.all(np.isfinite(tracks.boxes)) and np.all(np.isfinite(tracks.scores))
         assert all(np.all(np.isfinite(c.particles)) for c in t.components)
 
 
@@ -131,12 +133,12 @@ def run(scene, seed=0, **params):
     tracker = vtrack.MultiBernoulliTracker((scene.width, scene.height), seed=seed,
                                            **{**FOREGROUND_BOX, **params})
     rng = np.random.default_rng(100 + seed)
-    rows, counts = [], []
+    rows, counts = [np.zeros((0, 10))], []
     for k in range(len(scene)):
         tracks = tracker.step(render_y(scene.mask(k), rng))
-        rows += track_rows(k + 1, tracks)
+        rows.append(mot_rows(k + 1, tracks))
         counts.append(len(tracks))
-    return np.asarray(rows, float).reshape(-1, 10), counts
+    return np.vstack(rows), counts
 
 
 @pytest.fixture(scope="module")
@@ -188,7 +190,7 @@ def test_same_seed_same_tracks_and_threads(pets_like_scene):
 
     def tracks_of(out, index):
         t = vtrack.MultiBernoulliTracker((768, 576), seed=11)
-        out[index] = [[(tr.label, *tr.box, tr.existence) for tr in t.step(y)] for y in ys]
+        out[index] = [mot_rows(1, t.step(y)).tolist() for y in ys]
 
     results = [None] * 3
     tracks_of(results, 0)

@@ -6,29 +6,30 @@ import pytest
 
 import vtrack
 from vtrack.rgbd import (BurstOutcomes, RgbdScene, burst_outcomes, clear_mot, identity_events,
-                         make_rgbd_scene, match_frame)
+                         make_rgbd_scene, match_frame, positions)
 
 
 def test_kinect_conversion_is_equation_3_and_its_inverse():
     raw = np.array([0.0, 500.0, 1000.0, 1083.0])
-    np.testing.assert_allclose(vtrack.kinect_raw_to_depth(raw, 525.0),
+    np.testing.assert_allclose(vtrack.models.kinect_raw_to_depth(raw, 525.0),
                                8 * 0.075 * 525.0 / (1084.0 - raw), rtol=1e-15)
     # No reading: raw >= W_max, negative, NaN -> 0.
     np.testing.assert_array_equal(
-        vtrack.kinect_raw_to_depth(np.array([1084.0, 2047.0, -3.0, np.nan]), 525.0), 0.0)
+        vtrack.models.kinect_raw_to_depth(np.array([1084.0, 2047.0, -3.0, np.nan]), 525.0), 0.0)
     depth = np.linspace(0.3, 12.0, 200)
     np.testing.assert_allclose(
-        vtrack.kinect_raw_to_depth(vtrack.kinect_depth_to_raw(depth, 300.0), 300.0), depth,
+        vtrack.models.kinect_raw_to_depth(vtrack.models.kinect_depth_to_raw(depth, 300.0), 300.0), depth,
         rtol=1e-12)
-    assert vtrack.kinect_depth_to_raw(0.0) == 2047.0  # no reading stays no reading
-    assert vtrack.kinect_depth_to_raw(0.1) == 2047.0  # nearer than the sensor's minimum
+    assert vtrack.models.kinect_depth_to_raw(0.0) == 2047.0  # no reading stays no reading
+    assert vtrack.models.kinect_depth_to_raw(0.1) == 2047.0  # nearer than the sensor's minimum
 
 
 def numpy_log_ratio(model, depth, positions):
     """Eq. (4)'s tempered log ratio by summing log phi - log varphi over the footprint's pixels,
     the footprint from the pinhole formulas (independent of the C++ model)."""
     out = []
-    sw, sh = model.person_size
+    params = model.params
+    sw, sh = params["person_width"], params["person_height"]
     for X, Y, D in positions:
         if D <= 0.1:
             out.append(0.0)
@@ -38,19 +39,19 @@ def numpy_log_ratio(model, depth, positions):
         x0, x1 = (int(np.clip(np.floor(t + 0.5), 0, model.width)) for t in (u - a, u + a))
         y0, y1 = (int(np.clip(np.floor(t + 0.5), 0, model.height)) for t in (v - b, v + b))
         d = depth[y0:y1, x0:x1].astype(np.float64)
-        st, sb = model.sigma_target, model.sigma_background
+        st, sb = params["sigma_target"], params["sigma_background"]
         log_phi = -np.log(st) - (d - D) ** 2 / (2 * st * st)
         log_varphi = -np.log(sb) - d ** 2 / (2 * sb * sb)
-        out.append(model.tempering * float(np.sum(log_phi - log_varphi)))
+        out.append(params["tempering"] * float(np.sum(log_phi - log_varphi)))
     return np.array(out)
 
 
 @pytest.mark.parametrize("sigmas", [(1.0, 1.0), (0.2, 0.7)])
 def test_depth_log_ratio_matches_a_pixel_loop(sigmas):
     rng = np.random.default_rng(3)
-    model = vtrack.DepthLikelihood(64, 48, 50.0, 47.0, 30.2, 25.1, person_size=(0.45, 1.6),
-                                   sigma_target=sigmas[0], sigma_background=sigmas[1],
-                                   tempering=0.5)
+    model = vtrack.models.DepthLikelihood(64, 48, 50.0, 47.0, 30.2, 25.1, person_width=0.45,
+                                          person_height=1.6, sigma_target=sigmas[0],
+                                          sigma_background=sigmas[1], tempering=0.5)
     for _ in range(3):
         depth = np.where(rng.random((48, 64)) < 0.5, 0.0,
                          rng.uniform(0.5, 6.0, (48, 64))).astype(np.float32)
@@ -97,7 +98,7 @@ def run(tracker, scene, depth=True, frames=None):
     for k in range(frames or scene.frames):
         est = (tracker.step(scene.detections[k], depth=scene.depth(k)) if depth
                else tracker.step(scene.detections[k]))
-        out.append([(e.label, e.mean[[0, 2, 4]].copy()) for e in est])
+        out.append(positions(est))
     return out
 
 
@@ -109,8 +110,9 @@ def test_same_seed_same_tracks():
     flat = lambda r: [(lab, x.tobytes()) for f in r for lab, x in f]  # noqa: E731
     assert flat(a) == flat(b) and len(flat(a)) > 0
     assert flat(a) != flat(c)
-    assert scene.tracker(particles=100).particles == 100
-    assert scene.tracker(density="gaussian", switching=False).particles is None
+    assert scene.tracker(particles=100).params["n_particles"] == 100
+    assert scene.tracker(particles=100).params["densities"] == "particles"
+    assert scene.tracker(density="gaussian", switching=False).params["densities"] == "gaussian"
 
 
 def one_person_with_a_burst():

@@ -9,7 +9,7 @@ import pytest
 
 import vtrack
 from vtrack.evaluate import evaluate
-from vtrack.mot import read_mot
+from vtrack.io import read_mot
 from vtrack.synthetic import make_scene
 
 # The people of these 320 x 240 scenes are 14-24 px wide and 36-60 px tall; the tracker's size
@@ -70,7 +70,7 @@ def test_illumination_compensation_handles_a_faster_light_change(tmp_path):
     writer.release()
     plain = evaluate(scene.gt_rows(), vtrack.track_video(path, seed=0, **SIZE_PRIOR))
     compensated = evaluate(scene.gt_rows(), vtrack.track_video(
-        path, seed=0, background={"illumination_compensation": True}, **SIZE_PRIOR))
+        path, seed=0, illumination_compensation=True, **SIZE_PRIOR))
     assert compensated["MOTA"] > 0.85 and compensated["IDF1"] > 0.9, compensated
     assert compensated["FP"] < plain["FP"], (plain, compensated)
 
@@ -78,16 +78,20 @@ def test_illumination_compensation_handles_a_faster_light_change(tmp_path):
 def test_same_seed_same_tracks_and_parameters_are_checked(scenes):
     _, path = scenes[3]
     a = vtrack.track_video(path, seed=5, **SIZE_PRIOR)
-    b = vtrack.track_video(path, seed=5, background={"threads": 1}, **SIZE_PRIOR)
+    b = vtrack.track_video(path, config={"background": {"threads": 1}}, seed=5, **SIZE_PRIOR)
     np.testing.assert_array_equal(a, b)
     with pytest.raises(TypeError, match="no_such"):
         vtrack.track_video(path, no_such=1)
-    with pytest.raises(TypeError, match="unknown background parameter 'bandwidth'"):
-        vtrack.track_video(path, background={"bandwidth": 0.1})
+    with pytest.raises(TypeError, match="unknown mb parameter 'bandwith' \\(did you mean 'bandwidth'\\?\\)"):
+        vtrack.track_video(path, bandwith=(0.1, 0.1, 0.1))
+    with pytest.raises(TypeError, match="bandwidth must be a sequence of numbers"):
+        vtrack.track_video(path, config={"background": {"bandwidth": 0.1}})
     with pytest.raises(ValueError, match="sigma_x"):
         vtrack.track_video(path, sigma_x=-1.0)
-    with pytest.raises(ValueError, match="method"):
+    with pytest.raises(ValueError, match="method glmb needs a detector"):
         vtrack.track_video(path, method="glmb")
+    with pytest.raises(ValueError, match="method must be one of mb, glmb, got 'sort'"):
+        vtrack.track_video(path, method="sort")
     with pytest.raises(OSError, match="no such file"):
         vtrack.track_video(path.parent / "missing.avi")
 
@@ -95,7 +99,7 @@ def test_same_seed_same_tracks_and_parameters_are_checked(scenes):
 def test_cli_track_writes_tracks_and_render(vtrack_cli, scenes, tmp_path):
     scene, path = scenes[4]
     config = tmp_path / "params.yml"
-    config.write_text("%YAML:1.0\nseed: 2\ntracker:\n" +
+    config.write_text("seed: 2\ntracker:\n" +
                       "".join(f"  {k}: {v}\n" for k, v in SIZE_PRIOR.items()))
     out, render = tmp_path / "tracks.txt", tmp_path / "tracks.avi"
     result = vtrack_cli("track", path, "--out", out, "--render", render, "--config", config)
@@ -103,7 +107,7 @@ def test_cli_track_writes_tracks_and_render(vtrack_cli, scenes, tmp_path):
     assert "track: frame 150/150" in result.stderr  # progress on stderr
     rows = read_mot(out)
     np.testing.assert_allclose(rows, vtrack.track_video(path, seed=2, **SIZE_PRIOR), atol=0.006)
-    assert vtrack.probe_video(render).frame_count == 150
+    assert vtrack.io.probe_video(render).frame_count == 150
     # JSON config and --set give the same parameters.
     config_json = tmp_path / "params.json"
     config_json.write_text(json.dumps({"seed": 2, "tracker": {"width_mean": 19.0}}))
@@ -122,7 +126,7 @@ def test_cli_track_errors_leave_nothing_behind(vtrack_cli, scenes, write_video, 
     truncated = write_video(random_frames(40), name="truncated.avi")
     truncated.write_bytes(truncated.read_bytes()[: truncated.stat().st_size // 2])
     bad_config = tmp_path / "bad.yml"
-    bad_config.write_text("%YAML:1.0\ntracker:\n  no_such: 1\n")
+    bad_config.write_text("tracker:\n  no_such: 1\n")
     cases = [
         (("track", tmp_path / "missing.avi", "--out", out), 1, "no such file"),
         (("track", truncated, "--out", out, "--render", render), 1, "frame"),
@@ -155,6 +159,6 @@ def test_contact_sheet_tiles_frames_with_boxes(scenes, tmp_path):
     assert (tile == np.array(_colour(7), np.uint8)).all(axis=-1).any()
     out = tmp_path / "sheet.png"
     tracks_file = tmp_path / "t.txt"
-    vtrack.mot.write_mot(tracks_file, tracks)
+    vtrack.io.write_mot(tracks_file, tracks)
     assert main(["--video", str(path), "--tracks", str(tracks_file), "--out", str(out)]) == 0
     assert out.exists() and not (tmp_path / "sheet.partial.png").exists()

@@ -1,12 +1,15 @@
 // The `vtrack` command-line program: parses arguments and calls the library, nothing more.
 // Errors print `vtrack: error: ...` on stderr and exit with status 2 (usage) or 1 (failure).
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <functional>
 #include <iostream>
+#include <optional>
 #include <string>
-#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -14,10 +17,10 @@
 
 #include "batch_handoff.hpp"
 #include "vtrack/apps/background_subtraction.hpp"
-#include "vtrack/apps/detection_file.hpp"
-#include "vtrack/apps/parameters.hpp"
+#include "vtrack/apps/config.hpp"
+#include "vtrack/apps/mot_files.hpp"
+#include "vtrack/apps/pipeline.hpp"
 #include "vtrack/apps/track_detections.hpp"
-#include "vtrack/apps/track_video.hpp"
 #include "vtrack/apps/video_source.hpp"
 #include "vtrack/core/errors.hpp"
 #include "vtrack/version.hpp"
@@ -62,32 +65,19 @@ int run_info(const std::vector<std::string>& args) {
   return 0;
 }
 
-// Strict number parsing: the whole text must be the number.
-template <typename Number>
-Number parse_number(const std::string& option, const std::string& text, const char* what) {
+// Strict integer parsing: the whole text must be the number.
+int parse_int(const std::string& option, const std::string& text) {
   std::size_t used = 0;
-  Number value{};
+  int value = 0;
   try {
-    if constexpr (std::is_integral_v<Number>) {
-      value = std::stoi(text, &used);
-    } else {
-      value = std::stod(text, &used);
-    }
+    value = std::stoi(text, &used);
   } catch (const std::exception&) {
     used = 0;
   }
   if (used == 0 || used != text.size()) {
-    throw UsageError(option + " expects " + what + ", got '" + text + "'");
+    throw UsageError(option + " expects an integer, got '" + text + "'");
   }
   return value;
-}
-
-int parse_int(const std::string& option, const std::string& text) {
-  return parse_number<int>(option, text, "an integer");
-}
-
-double parse_double(const std::string& option, const std::string& text) {
-  return parse_number<double>(option, text, "a number");
 }
 
 // Progress on stderr every 25 frames: one line rewritten in place on a terminal, otherwise one
@@ -143,69 +133,64 @@ std::string walk_arguments(const std::string& command, const std::vector<std::st
   return input;
 }
 
+// Runs `assemble` on parameters from the command line: a value the library rejects is a usage
+// error (exit 2), as a malformed command line is.
+template <typename Assemble>
+void as_usage(const Assemble& assemble) {
+  try {
+    assemble();
+  } catch (const vtrack::InvalidArgument& e) {
+    throw UsageError(e.what());
+  }
+}
+
+std::uint64_t parse_seed(const std::string& text) {
+  std::uint64_t seed = 0;
+  as_usage([&] { seed = vtrack::core::seed_value("--seed", vtrack::core::parse_parameter_text(text)); });
+  return seed;
+}
+
 int run_bgs(const std::vector<std::string>& args) {
-  std::string output;
-  vtrack::image::KdeBackgroundParams params;
+  std::string output, config;
+  std::vector<std::string> settings;
   const std::string input = walk_arguments("bgs", args, [&](const std::string& a, const std::string& value) {
     if (a == "--out") {
       output = value;
-    } else if (a == "--samples") {
-      params.n_samples = parse_int(a, value);
-    } else if (a == "--period") {
-      params.period = parse_int(a, value);
-    } else if (a == "--closing") {
-      params.closing = parse_int(a, value);
-    } else if (a == "--threads") {
-      params.threads = parse_int(a, value);
-    } else if (a == "--bandwidth") {
-      std::vector<double> sigmas;
-      std::size_t start = 0;
-      while (true) {
-        const std::size_t comma = value.find(',', start);
-        sigmas.push_back(parse_double(a, value.substr(start, comma - start)));
-        if (comma == std::string::npos) break;
-        start = comma + 1;
-      }
-      if (sigmas.size() != 3) {
-        throw UsageError("--bandwidth expects three numbers r,g,I, got '" + value + "'");
-      }
-      params.sigma_r = sigmas[0];
-      params.sigma_g = sigmas[1];
-      params.sigma_I = sigmas[2];
+    } else if (a == "--config") {
+      config = value;
+    } else if (a == "--set") {
+      settings.push_back(value);
     } else {
       throw UsageError("unknown option '" + a + "'");
     }
   });
   if (input.empty()) throw UsageError("bgs needs a VIDEO (or image folder)");
   if (output.empty()) throw UsageError("bgs needs --out OUT (a folder, or a .avi/.mp4/.mkv file)");
-  try {
-    vtrack::image::validate(params);
-  } catch (const vtrack::InvalidArgument& e) {
-    throw UsageError(e.what());
+  vtrack::image::KdeBackgroundParams params;
+  if (!config.empty()) {
+    const auto file = vtrack::apps::read_config(config);
+    for (const auto& [section, values] : file.sections) {
+      if (section != "background") {
+        throw vtrack::InvalidArgument("config file '" + config + "': bgs reads only the section "
+                                      "background, got '" + section + "'");
+      }
+    }
+    vtrack::core::set_parameters(params, file.section("background"), "background");
   }
-
+  as_usage([&] {
+    for (const auto& setting : settings) {
+      const auto [name, value] = vtrack::core::parse_setting(setting);
+      vtrack::core::set_parameters(params, {{name, value}}, "background");
+    }
+    vtrack::image::validate(params);
+  });
   ProgressLine progress("bgs");
-  vtrack::apps::BgsResult result;
-  result = vtrack::apps::run_background_subtraction(input, output, params, progress.callback());
+  const auto result = vtrack::apps::run_background_subtraction(input, output, params,
+                                                               progress.callback());
   progress.finish();
   std::cout << "wrote " << result.frames << " y images to " << output
             << (result.video ? " (video)" : " (PNG folder)") << "\n";
   return 0;
-}
-
-// `--set name=value`: a number, true/false, or a name (e.g. resampling=residual).
-vtrack::apps::ParameterValue parse_value(const std::string& text) {
-  if (text == "true") return true;
-  if (text == "false") return false;
-  std::size_t used = 0;
-  try {
-    const long long i = std::stoll(text, &used);
-    if (used == text.size()) return i;
-    const double d = std::stod(text, &used);
-    if (used == text.size()) return d;
-  } catch (const std::exception&) {
-  }
-  return text;
 }
 
 // The options of `vtrack track`, whichever method.
@@ -213,73 +198,11 @@ struct TrackOptions {
   std::string input, output, render, method = "mb", config, detections, detector,
       save_detections, image_size;
   std::vector<std::string> settings;
-  long long seed = -1;
+  std::optional<std::uint64_t> seed;
 };
 
-// Applies each `--set name=value` with the first setter that knows the name.
-void apply_settings(
-    const std::vector<std::string>& settings,
-    const std::vector<std::function<bool(const std::string&, const vtrack::apps::ParameterValue&)>>&
-        setters) {
-  for (const auto& setting : settings) {
-    const std::size_t eq = setting.find('=');
-    if (eq == std::string::npos) throw UsageError("--set expects name=value, got '" + setting + "'");
-    const std::string name = setting.substr(0, eq);
-    const auto value = parse_value(setting.substr(eq + 1));
-    bool known = false;
-    for (const auto& set : setters) {
-      if ((known = set(name, value))) break;
-    }
-    if (!known) throw UsageError("--set: unknown parameter '" + name + "'");
-  }
-}
-
-template <typename Params>
-std::function<bool(const std::string&, const vtrack::apps::ParameterValue&)> setter(Params& p) {
-  return [&p](const std::string& name, const vtrack::apps::ParameterValue& value) {
-    return vtrack::apps::set_parameter(p, name, value);
-  };
-}
-
-// Runs `validate` on parameters assembled from the command line: a bad value is a usage error.
-template <typename Validate>
-void validate_usage(const Validate& validate) {
-  try {
-    validate();
-  } catch (const vtrack::InvalidArgument& e) {
-    throw UsageError(e.what());
-  }
-}
-
-int run_track_mb(const TrackOptions& o) {
-  for (const auto& [flag, value] : {std::pair{"--detections", o.detections},
-                                    {"--detector", o.detector},
-                                    {"--save-detections", o.save_detections},
-                                    {"--image-size", o.image_size}}) {
-    if (!value.empty()) throw UsageError(std::string(flag) + " needs --method glmb");
-  }
-  if (o.input.empty()) throw UsageError("track needs a VIDEO (or image folder)");
-  vtrack::apps::MbPipelineParams params;
-  if (!o.config.empty()) vtrack::apps::load_pipeline_config(o.config, params);
-  if (o.seed >= 0) params.seed = static_cast<std::uint64_t>(o.seed);
-  apply_settings(o.settings, {setter(params.background), setter(params.tracker)});
-  validate_usage([&] {
-    vtrack::image::validate(params.background);
-    vtrack::filters::validate(params.tracker);
-  });
-  ProgressLine progress("track");
-  const auto rows = vtrack::apps::track_video_mb(o.input, params, o.render, progress.callback());
-  progress.finish();
-  // Written only once the whole video is tracked, so a failure leaves no tracks file.
-  vtrack::apps::write_mot(o.output, rows);
-  std::cout << "wrote " << rows.size() << " track rows to " << o.output;
-  if (!o.render.empty()) std::cout << " and the annotated video to " << o.render;
-  std::cout << "\n";
-  return 0;
-}
-
 // "WxH" with positive integers.
-std::pair<double, double> parse_image_size(const std::string& text) {
+std::pair<int, int> parse_image_size(const std::string& text) {
   const std::size_t x = text.find('x');
   if (x == std::string::npos) throw UsageError("--image-size expects WxH, got '" + text + "'");
   const int w = parse_int("--image-size", text.substr(0, x));
@@ -288,9 +211,20 @@ std::pair<double, double> parse_image_size(const std::string& text) {
   return {w, h};
 }
 
-int run_track_glmb(const TrackOptions& o) {
-  if (!o.detections.empty()) {
-    if (!o.input.empty()) throw UsageError("give either a VIDEO or --detections, not both");
+// Which inputs and options a method takes; usage errors for the others.
+void check_track_options(const TrackOptions& o) {
+  const bool detections = !o.detections.empty();
+  if (o.method == "mb") {
+    for (const auto& [flag, value] : {std::pair{"--detections", o.detections},
+                                      {"--save-detections", o.save_detections},
+                                      {"--image-size", o.image_size}}) {
+      if (!value.empty()) throw UsageError(std::string(flag) + " needs --method glmb");
+    }
+    if (o.input.empty()) throw UsageError("track needs a VIDEO (or image folder)");
+    return;
+  }
+  if (detections && !o.input.empty()) throw UsageError("give either a VIDEO or --detections, not both");
+  if (detections) {
     for (const auto& [flag, value] : {std::pair{"--detector", o.detector},
                                       {"--render", o.render},
                                       {"--save-detections", o.save_detections}}) {
@@ -304,65 +238,112 @@ int run_track_glmb(const TrackOptions& o) {
     // Explicit, so that a detector added later cannot silently change what a command line does.
     throw UsageError("--method glmb on a VIDEO needs --detector hog (what gives the boxes)");
   }
-  if (!o.detector.empty() && o.detector != "hog") {
-    throw UsageError("--detector must be 'hog' (got '" + o.detector + "')");
-  }
-  vtrack::apps::GlmbPipelineParams params;
-  if (!o.config.empty()) vtrack::apps::load_pipeline_config(o.config, params);
-  // The seed matters only with gibbs_ranking (Murty's ranking is deterministic).
-  if (o.seed >= 0) params.tracker.seed = static_cast<int>(o.seed);
-  apply_settings(o.settings, {setter(params.detector), setter(params.tracker)});
-  validate_usage([&] {
-    vtrack::apps::validate(params.detector);
-    vtrack::apps::validate(params.tracker);
-  });
-  ProgressLine progress("track");
-  std::vector<vtrack::apps::TrackRow> rows;
-  if (!o.detections.empty()) {
-    const auto size = o.image_size.empty() ? std::pair<double, double>{} : parse_image_size(o.image_size);
-    const auto detections = vtrack::apps::read_detections(o.detections);
-    const auto [width, height] =
-        o.image_size.empty() ? vtrack::apps::detections_extent(detections) : size;
-    rows = vtrack::apps::track_detections(detections, width, height, params.tracker, 0,
-                                          progress.callback());
-  } else {
-    auto result = vtrack::apps::track_video_glmb(o.input, params.detector, params.tracker,
-                                                 o.render, progress.callback());
-    rows = std::move(result.tracks);
-    if (!o.save_detections.empty()) {
-      vtrack::apps::write_detections(o.save_detections, result.detections);
+}
+
+// The pipeline's parameters from --config, --seed and --set (in that order of precedence,
+// lowest first). Without a detector glmb tracks boxes from a file: only its tracker is checked.
+vtrack::apps::PipelineParams track_params(const TrackOptions& o) {
+  vtrack::apps::PipelineParams params;
+  params.method = o.method;
+  params.detector = o.detector;
+  if (!o.config.empty()) vtrack::apps::apply_config(params, vtrack::apps::read_config(o.config));
+  as_usage([&] {
+    if (o.seed) vtrack::apps::set_pipeline_parameter(params, "seed", *o.seed);
+    for (const auto& setting : o.settings) {
+      const auto [name, value] = vtrack::core::parse_setting(setting);
+      vtrack::apps::set_pipeline_parameter(params, name, value);
     }
+    if (o.method == "glmb" && o.detector.empty()) {
+      vtrack::apps::validate(params.box);  // the boxes come from a file
+    } else {
+      vtrack::apps::validate(params);
+    }
+  });
+  return params;
+}
+
+// The options `track` and `params` share: --method, --detector, --config, --seed, --set.
+bool parameter_option(TrackOptions& o, const std::string& a, const std::string& value) {
+  if (a == "--method") {
+    o.method = value;
+  } else if (a == "--detector") {
+    o.detector = value;
+  } else if (a == "--config") {
+    o.config = value;
+  } else if (a == "--seed") {
+    o.seed = parse_seed(value);
+  } else if (a == "--set") {
+    o.settings.push_back(value);
+  } else {
+    return false;
   }
-  progress.finish();
-  // Written only once everything is tracked, so a failure leaves no tracks file.
-  vtrack::apps::write_mot(o.output, rows);
-  std::cout << "wrote " << rows.size() << " track rows to " << o.output;
-  if (!o.render.empty()) std::cout << ", the annotated video to " << o.render;
-  if (!o.save_detections.empty()) std::cout << ", the detections to " << o.save_detections;
-  std::cout << "\n";
+  return true;
+}
+
+void check_method(const TrackOptions& o) {
+  const auto& methods = vtrack::apps::pipeline_methods();
+  if (std::find(methods.begin(), methods.end(), o.method) == methods.end()) {
+    throw UsageError("--method must be 'mb' or 'glmb' (got '" + o.method + "')");
+  }
+}
+
+// A parameter value as JSON.
+std::string json_value(const vtrack::core::ParameterValue& v) {
+  if (const auto* s = std::get_if<std::string>(&v)) return "\"" + *s + "\"";
+  if (const auto* d = std::get_if<double>(&v)) {
+    if (std::isnan(*d)) return "NaN";
+    if (std::isinf(*d)) return *d > 0 ? "Infinity" : "-Infinity";
+    // The shortest of %.15g..%.17g that reads back as the same double (0.1, not 0.10000000000000001).
+    char text[32];
+    for (int digits = 15; digits <= 17; ++digits) {
+      std::snprintf(text, sizeof text, "%.*g", digits, *d);
+      if (std::strtod(text, nullptr) == *d) break;
+    }
+    return text;
+  }
+  if (const auto* r = std::get_if<std::vector<double>>(&v)) {
+    std::string out = "[";
+    for (std::size_t i = 0; i < r->size(); ++i) out += (i ? ", " : "") + json_value((*r)[i]);
+    return out + "]";
+  }
+  return vtrack::core::to_text(v);
+}
+
+// `vtrack params`: the parameters a `vtrack track` with the same options would run with, as
+// JSON sections (what --config reads back).
+int run_params(const std::vector<std::string>& args) {
+  TrackOptions o;
+  const std::string input = walk_arguments("params", args, [&](const std::string& a, const std::string& value) {
+    if (!parameter_option(o, a, value)) throw UsageError("unknown option '" + a + "'");
+  });
+  if (!input.empty()) throw UsageError("params takes no VIDEO, got '" + input + "'");
+  check_method(o);
+  const auto params = track_params(o);
+  std::cout << "{\n";
+  const auto sections = vtrack::apps::pipeline_sections(params);
+  for (std::size_t s = 0; s < sections.size(); ++s) {
+    std::cout << "  \"" << sections[s].name << "\": {\n";
+    const auto& values = sections[s].values;
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      std::cout << "    \"" << values[i].first << "\": " << json_value(values[i].second)
+                << (i + 1 < values.size() ? ",\n" : "\n");
+    }
+    std::cout << "  }" << (s + 1 < sections.size() ? ",\n" : "\n");
+  }
+  std::cout << "}\n";
   return 0;
 }
 
 int run_track(const std::vector<std::string>& args) {
   TrackOptions o;
   o.input = walk_arguments("track", args, [&](const std::string& a, const std::string& value) {
+    if (parameter_option(o, a, value)) return;
     if (a == "--out") {
       o.output = value;
-    } else if (a == "--method") {
-      o.method = value;
     } else if (a == "--render") {
       o.render = value;
-    } else if (a == "--config") {
-      o.config = value;
-    } else if (a == "--seed") {
-      o.seed = parse_int(a, value);
-      if (o.seed < 0) throw UsageError("--seed must be >= 0, got " + value);
-    } else if (a == "--set") {
-      o.settings.push_back(value);
     } else if (a == "--detections") {
       o.detections = value;
-    } else if (a == "--detector") {
-      o.detector = value;
     } else if (a == "--save-detections") {
       o.save_detections = value;
     } else if (a == "--image-size") {
@@ -371,14 +352,35 @@ int run_track(const std::vector<std::string>& args) {
       throw UsageError("unknown option '" + a + "'");
     }
   });
-  if (o.method != "mb" && o.method != "glmb") {
-    throw UsageError("--method must be 'mb' or 'glmb' (got '" + o.method + "')");
-  }
+  check_method(o);
   if (o.output.empty()) throw UsageError("track needs --out TRACKS (MOTChallenge text)");
   if (!o.render.empty() && !vtrack::apps::is_video_output(o.render)) {
     throw UsageError("--render must name a .avi, .mp4 or .mkv file, got '" + o.render + "'");
   }
-  return o.method == "mb" ? run_track_mb(o) : run_track_glmb(o);
+  check_track_options(o);
+  const auto params = track_params(o);
+  ProgressLine progress("track");
+  vtrack::apps::PipelineResult result;
+  if (!o.detections.empty()) {
+    const auto [width, height] =
+        o.image_size.empty() ? std::pair<int, int>{0, 0} : parse_image_size(o.image_size);
+    result.tracks = vtrack::apps::track_detections(vtrack::apps::read_detections(o.detections),
+                                                   width, height, params.box, 0,
+                                                   progress.callback());
+  } else {
+    result = vtrack::apps::track_video(o.input, params, o.render, progress.callback());
+  }
+  progress.finish();
+  // Written only once everything is tracked, so a failure leaves no tracks file.
+  vtrack::apps::write_mot(o.output, result.tracks);
+  if (!o.save_detections.empty()) {
+    vtrack::apps::write_detections(o.save_detections, result.detections);
+  }
+  std::cout << "wrote " << result.tracks.size() << " track rows to " << o.output;
+  if (!o.render.empty()) std::cout << ", the annotated video to " << o.render;
+  if (!o.save_detections.empty()) std::cout << ", the detections to " << o.save_detections;
+  std::cout << "\n";
+  return 0;
 }
 
 // `vtrack batch` is Python (vtrack.batch, on Dask): this execs the interpreter vtrack is
@@ -392,18 +394,17 @@ const std::vector<Command>& commands() {
       {"info", "print frame count, frame size and frame rate of a video or image folder",
        "vtrack info VIDEO_OR_IMAGE_FOLDER", run_info},
       {"bgs", "KDE background subtraction (rgI, eq. 10): write the y images (255 = background)",
-       "vtrack bgs VIDEO --out OUT [--samples N] [--period K] [--bandwidth r,g,I] [--closing K]\n"
-       "                  [--threads T]\n\n"
+       "vtrack bgs VIDEO --out OUT [--config FILE] [--set name=value ...]\n\n"
        "  VIDEO            a video file or a folder of images\n"
        "  --out OUT        a .avi/.mkv (Motion-JPEG) or .mp4 file, written under a temporary\n"
        "                   name and renamed when complete; any other name is a folder of PNGs\n"
        "                   000000.png, 000001.png, ... (0-based frame index); if the input is\n"
        "                   corrupt, the images of the frames before the error stay and are valid\n"
-       "  --samples N      N0, samples in the background stack (default 10)\n"
-       "  --period K       K0, frames between samples (default 10)\n"
-       "  --bandwidth r,g,I  kernel bandwidths sigma_r,sigma_g,sigma_I (default 0.03,0.03,0.06)\n"
-       "  --closing K      side of the square closing y, 0 = off (default 3)\n"
-       "  --threads T      0 = OpenCV default, 1 = single thread (default 0)",
+       "  --config FILE    YAML or JSON with a section background (the names below)\n"
+       "  --set name=value one KDE parameter (repeatable; defaults in brackets):\n"
+       "                   n_samples [10], period [10], bandwidth=r,g,I [0.03,0.03,0.06],\n"
+       "                   closing [5], threads [0], update_threshold [0.5],\n"
+       "                   update_max_skips [3], illumination_compensation [false]",
        run_bgs},
       {"track",
        "track people: KDE background + multi-Bernoulli TBD filter (mb), or detections + GLMB",
@@ -416,7 +417,7 @@ const std::vector<Command>& commands() {
        "                    [--config FILE] [--seed N] [--set name=value ...]\n\n"
        "  VIDEO            a video file or a folder of images\n"
        "  --out TRACKS     MOTChallenge text: frame,id,x,y,w,h,conf,-1,-1,-1 (frames from 1,\n"
-       "                   conf = existence probability); written only when tracking succeeded\n"
+       "                   conf = the track's score); written only when tracking succeeded\n"
        "  --method mb      the multi-Bernoulli track-before-detect tracker (mb-tbd paper)\n"
        "  --method glmb    the delta-GLMB tracker on image boxes (state: box centre, velocity,\n"
        "                   size), from a MOTChallenge det file or from HOG people detections\n"
@@ -425,18 +426,22 @@ const std::vector<Command>& commands() {
        "  --detector hog   OpenCV's HOG people detector on every frame (required with a VIDEO)\n"
        "  --save-detections DET  also write the detector's boxes as MOTChallenge det rows\n"
        "  --render FILE    also write the video with each track's box in its own colour\n"
-       "  --config FILE    YAML or JSON. mb: sections seed, background (n_samples, period,\n"
-       "                   sigma_r, sigma_g, sigma_I, closing, threads) and tracker (delta_f,\n"
-       "                   delta_b, closing_size, sigma_x, ..., see vtrack.MultiBernoulliTracker\n"
-       "                   .default_params() in Python); glmb: sections detector (hit_threshold,\n"
-       "                   win_stride, padding, scale, upscale, group_threshold, min_score,\n"
-       "                   person_fraction) and\n"
-       "                   tracker (detection_probability, clutter_rate, sigma_accel, ...; see\n"
-       "                   vtrack.BoxTracker.default_params() in Python)\n"
-       "  --seed N         random seed (default 0): the same seed gives the same tracks (mb; glmb\n"
-       "                   with gibbs_ranking -- Murty's ranking is deterministic)\n"
-       "  --set name=value override one parameter of a config section (repeatable)",
+       "  --config FILE    YAML or JSON: a top-level seed and sections of parameters. mb:\n"
+       "                   background (vtrack.KdeBackground.default_params() in Python) and\n"
+       "                   tracker (vtrack.MultiBernoulliTracker.default_params()); glmb:\n"
+       "                   detector (vtrack.HogPeopleDetector.default_params()) and tracker\n"
+       "                   (vtrack.BoxTracker.default_params())\n"
+       "  --seed N         the tracker's seed, 0 to 2^64-1 (default 0): the same seed gives the\n"
+       "                   same tracks (glmb uses it only with ranking=gibbs)\n"
+       "  --set name=value one parameter of any of the method's sections (repeatable); lists\n"
+       "                   as a,b,c",
        run_track},
+      {"params", "print the parameters a track run would use, as JSON config sections",
+       "vtrack params [--method mb|glmb] [--detector hog] [--config FILE] [--seed N]\n"
+       "              [--set name=value ...]\n\n"
+       "  Resolves the defaults, the config file, --seed and --set exactly as `vtrack track`\n"
+       "  does and prints the result: each section of the method with every parameter.",
+       run_params},
       {"batch", "track many videos at once on Dask, locally or on a cluster (vtrack.batch)",
        "vtrack batch INPUTS... --out DIR [options]   (vtrack batch --help lists them)", run_batch},
   };

@@ -9,9 +9,8 @@
 #include <Eigen/LU>
 #include <opencv2/imgproc.hpp>
 
-#include "vtrack/apps/detection_file.hpp"
+#include "vtrack/apps/mot_files.hpp"
 #include "vtrack/apps/hog_detector.hpp"
-#include "vtrack/apps/parameters.hpp"
 #include "vtrack/apps/track_detections.hpp"
 #include "vtrack/core/errors.hpp"
 
@@ -208,29 +207,6 @@ TEST(BoxTracker, BadParametersAndInputsAreNamed) {
   EXPECT_THROW(vtrack::apps::BoxTracker(0, 480), vtrack::InvalidArgument);
   const std::vector<Detection> bad = {{1, 0, 0, -1, 10, 1}};
   EXPECT_THROW(vtrack::apps::track_detections(bad, 640, 480), vtrack::InvalidArgument);
-}
-
-TEST(BoxTracker, EveryParameterIsReachableByName) {
-  BoxTrackerParams p;
-  for (const auto& [name, value] : vtrack::apps::parameter_values(p)) {
-    vtrack::apps::ParameterValue changed = value;
-    if (auto* d = std::get_if<double>(&changed)) *d = std::isfinite(*d) ? *d * 0.5 : 0.25;
-    if (auto* i = std::get_if<long long>(&changed)) *i += 1;
-    if (auto* b = std::get_if<bool>(&changed)) *b = !*b;
-    ASSERT_TRUE(vtrack::apps::set_parameter(p, name, changed)) << name;
-  }
-  for (const auto& [name, value] : vtrack::apps::parameter_values(p)) {
-    const auto defaults = vtrack::apps::parameter_values(BoxTrackerParams{});
-    for (const auto& [n, v] : defaults) {
-      if (n == name) {
-        EXPECT_NE(v, value) << name << " did not change";
-      }
-    }
-  }
-  EXPECT_FALSE(vtrack::apps::set_parameter(p, "no_such_parameter", 1.0));
-  vtrack::apps::HogParams h;
-  EXPECT_TRUE(vtrack::apps::set_parameter(h, "win_stride", 16LL));
-  EXPECT_EQ(h.win_stride, 16);
 }
 
 TEST(HogDetector, FindsNothingOnABlankFrameAndRejectsBadInput) {

@@ -289,7 +289,7 @@ TEST(Glmb, FieldOfViewNeedsBoundsOfTheStateDimensionAndProbabilities) {
   EXPECT_NE(rejects([](filters::FieldOfView& f) { f.upper[0] = std::nan(""); }).find("NaN"),
             std::string::npos);
   EXPECT_NE(rejects([](filters::FieldOfView& f) { f.outside_survival_probability = 0.0; })
-                .find("outside_survival_probability must lie in (0, 1]"),
+                .find("outside_survival_probability must be in (0, 1]"),
             std::string::npos);
   EXPECT_NE(rejects([](filters::FieldOfView& f) { f.outside_detection_probability = 1.5; })
                 .find("outside_detection_probability"),

@@ -37,7 +37,7 @@ double kernel_product(const cv::Vec3b& a, const cv::Vec3b& b, const KdeBackgroun
     return std::vector<double>{s > 0 ? v[2] / s : 1.0 / 3, s > 0 ? v[1] / s : 1.0 / 3, s / 765.0};
   };
   const auto x = rgi(a), m = rgi(b);
-  const double sigma[3] = {p.sigma_r, p.sigma_g, p.sigma_I};
+  const double sigma[3] = {p.bandwidth[0], p.bandwidth[1], p.bandwidth[2]};
   double e = 0;
   for (int d = 0; d < 3; ++d) e += (x[d] - m[d]) * (x[d] - m[d]) / (2 * sigma[d] * sigma[d]);
   return std::exp(-e);
@@ -72,7 +72,7 @@ TEST(KdeBackground, SampleScheduleFrameByFrame) {
 // must equal eq. (10) against exactly the frames the schedule says are in the stack.
 TEST(KdeBackground, ValuesMatchEquationTenOnTheSchedule) {
   KdeBackgroundParams p = no_closing(3, 2);
-  p.sigma_r = 0.01;  // consecutive levels differ by ~0.0025 in r: distinguishable kernels
+  p.bandwidth[0] = 0.01;  // consecutive levels differ by ~0.0025 in r: distinguishable kernels
   KdeBackground model(p);
   std::vector<cv::Mat> frames, stack;
   cv::Mat y;
@@ -158,9 +158,9 @@ TEST(KdeBackground, FirstFrameIsItsOwnBackground) {
 
 TEST(KdeBackground, RandomImagesMatchEquationTen) {
   KdeBackgroundParams p = no_closing(4, 1);
-  p.sigma_r = 0.05;
-  p.sigma_g = 0.04;
-  p.sigma_I = 0.1;
+  p.bandwidth[0] = 0.05;
+  p.bandwidth[1] = 0.04;
+  p.bandwidth[2] = 0.1;
   cv::RNG rng(7);
   std::vector<cv::Mat> frames;
   KdeBackground model(p);
@@ -300,10 +300,10 @@ TEST(KdeBackground, RejectsBadParameters) {
   rejects([](KdeBackgroundParams& p) { p.n_samples = 0; }, "n_samples");
   rejects([](KdeBackgroundParams& p) { p.n_samples = -3; }, "n_samples");
   rejects([](KdeBackgroundParams& p) { p.period = 0; }, "period");
-  rejects([](KdeBackgroundParams& p) { p.sigma_r = 0; }, "sigma_r");
-  rejects([](KdeBackgroundParams& p) { p.sigma_g = -0.1; }, "sigma_g");
-  rejects([](KdeBackgroundParams& p) { p.sigma_I = NAN; }, "sigma_I");
-  rejects([](KdeBackgroundParams& p) { p.sigma_I = INFINITY; }, "sigma_I");
+  rejects([](KdeBackgroundParams& p) { p.bandwidth[0] = 0; }, "sigma_r");
+  rejects([](KdeBackgroundParams& p) { p.bandwidth[1] = -0.1; }, "sigma_g");
+  rejects([](KdeBackgroundParams& p) { p.bandwidth[2] = NAN; }, "sigma_I");
+  rejects([](KdeBackgroundParams& p) { p.bandwidth[2] = INFINITY; }, "sigma_I");
   rejects([](KdeBackgroundParams& p) { p.closing = 4; }, "closing");
   rejects([](KdeBackgroundParams& p) { p.closing = -1; }, "closing");
   rejects([](KdeBackgroundParams& p) { p.threads = -1; }, "threads");

@@ -15,7 +15,8 @@ using vtrack::InvalidArgument;
 using vtrack::filters::BoxStates;
 using vtrack::filters::MultiBernoulliFilter;
 using vtrack::filters::MultiBernoulliParams;
-using vtrack::filters::Track;
+using vtrack::filters::TrackEstimate;
+using vtrack::filters::Tracks;
 using vtrack::filters::updated_existence;
 
 namespace {
@@ -25,6 +26,11 @@ cv::Mat scene(const std::vector<cv::Rect>& people) {
   cv::Mat y(120, 160, CV_32F, cv::Scalar(0.95f));
   for (const auto& r : people) y(r & cv::Rect(0, 0, 160, 120)).setTo(0.1f);
   return y;
+}
+
+MultiBernoulliParams seeded(MultiBernoulliParams p, std::uint64_t seed) {
+  p.seed = seed;
+  return p;
 }
 
 MultiBernoulliParams small_scene_params() {
@@ -42,8 +48,8 @@ MultiBernoulliParams small_scene_params() {
   p.adaptive_birth_stride = 4;
   // The paper's track output (Section 4): no confirmation delay, no lost-track memory, random
   // walk, reported box = estimated box. The tests of track management below switch them on.
-  p.confirm_frames = 1;
-  p.lost_memory = 0;
+  p.management.confirm_frames = 1;
+  p.management.lost_memory = 0;
   p.velocity_smoothing = 0.0;
   p.box_scale_w = p.box_scale_h = 1.0;
   p.box_offset_x = p.box_offset_y = 0.0;
@@ -82,7 +88,7 @@ TEST(MultiBernoulli, SingleComponentExistenceFollowsClosedFormWithKnownRho) {
   p.merge_overlap = 1.0;
   p.survival_probability = 0.9;
   p.likelihood.delta_f = 0.5;
-  MultiBernoulliFilter f(160, 120, p, 3);
+  MultiBernoulliFilter f(160, 120, seeded(p, 3));
   const cv::Mat y(120, 160, CV_32F, cv::Scalar(1.0f));
   const double rho = f.likelihood().log_zeta_f() - 1.0 / 0.5;
   const double rho_lin = std::exp(rho);
@@ -108,7 +114,7 @@ TEST(MultiBernoulli, ExistenceRisesWithKnownRhoAboveOne) {
   p.likelihood.delta_f = 0.5;
   p.likelihood.delta_b = 1e12;
   p.merge_overlap = 1.0;  // never merge: the four image-sized boxes overlap
-  MultiBernoulliFilter f(160, 120, p, 4);
+  MultiBernoulliFilter f(160, 120, seeded(p, 4));
   f.step(cv::Mat(120, 160, CV_32F, cv::Scalar(0.0f)));
   const double zeta = std::exp(f.likelihood().log_zeta_f());
   const double r1 = 0.02 * zeta / (0.98 + 0.02 * zeta);
@@ -140,7 +146,7 @@ TEST(MultiBernoulli, MergeKeepsTheOlderLabelAndMixesByExistence) {
 }
 
 TEST(MultiBernoulli, BackgroundOnlyPrunesEverything) {
-  MultiBernoulliFilter f(160, 120, small_scene_params(), 1);
+  MultiBernoulliFilter f(160, 120, seeded(small_scene_params(), 1));
   const cv::Mat y(120, 160, CV_32F, cv::Scalar(1.0f));
   for (int k = 0; k < 5; ++k) {
     EXPECT_TRUE(f.step(y).empty());
@@ -149,26 +155,26 @@ TEST(MultiBernoulli, BackgroundOnlyPrunesEverything) {
 }
 
 TEST(MultiBernoulli, AllForegroundNeverProducesNaN) {
-  MultiBernoulliFilter f(160, 120, small_scene_params(), 2);
+  MultiBernoulliFilter f(160, 120, seeded(small_scene_params(), 2));
   const cv::Mat y(120, 160, CV_32F, cv::Scalar(0.0f));
   for (int k = 0; k < 20; ++k) {
-    for (const Track& t : f.step(y)) {
+    for (const TrackEstimate& t : f.step(y)) {
       EXPECT_TRUE(std::isfinite(t.x) && std::isfinite(t.y) && std::isfinite(t.w) &&
-                  std::isfinite(t.h) && std::isfinite(t.existence));
+                  std::isfinite(t.h) && std::isfinite(t.score));
     }
     ASSERT_TRUE(all_finite(f));
   }
 }
 
 TEST(MultiBernoulli, FindsOneTargetKeepsItsLabelAndMergesDuplicates) {
-  MultiBernoulliFilter f(160, 120, small_scene_params(), 7);
+  MultiBernoulliFilter f(160, 120, seeded(small_scene_params(), 7));
   std::set<std::uint64_t> labels;
   for (int k = 0; k < 30; ++k) {
     const cv::Rect person(40 + k, 50, 12, 30);
     const auto tracks = f.step(scene({person}));
     if (k < 3) continue;  // found within three frames
     ASSERT_EQ(tracks.size(), 1u) << "frame " << k;
-    labels.insert(tracks[0].label);
+    labels.insert(tracks[0].id);
     // The data-driven birth may start from a window 1.4 times the person (this target is 1.9%
     // of the image, so eq. 20's foreground reward dominates); the box has shrunk by frame 12.
     if (k < 12) continue;
@@ -181,30 +187,30 @@ TEST(MultiBernoulli, FindsOneTargetKeepsItsLabelAndMergesDuplicates) {
 }
 
 TEST(MultiBernoulli, TwoTargetsDistinctLabelsAndOneLeaves) {
-  MultiBernoulliFilter f(160, 120, small_scene_params(), 8);
+  MultiBernoulliFilter f(160, 120, seeded(small_scene_params(), 8));
   const cv::Rect a(20, 20, 12, 30), b(110, 60, 12, 30);
   std::uint64_t label_b = 0;
   for (int k = 0; k < 15; ++k) {
     const auto tracks = f.step(scene({a, b}));
     if (k >= 4) {
       ASSERT_EQ(tracks.size(), 2u) << "frame " << k;
-      EXPECT_NE(tracks[0].label, tracks[1].label);
-      label_b = tracks[0].x > tracks[1].x ? tracks[0].label : tracks[1].label;
+      EXPECT_NE(tracks[0].id, tracks[1].id);
+      label_b = tracks[0].x > tracks[1].x ? tracks[0].id : tracks[1].id;
     }
   }
   for (int k = 0; k < 10; ++k) {
     const auto tracks = f.step(scene({b}));  // a vanished
     if (k >= 3) {
       ASSERT_EQ(tracks.size(), 1u) << "frame " << k;
-      EXPECT_EQ(tracks[0].label, label_b);
+      EXPECT_EQ(tracks[0].id, label_b);
     }
   }
 }
 
 TEST(MultiBernoulli, SameSeedSameTracks) {
   auto run = [](std::uint64_t seed) {
-    MultiBernoulliFilter f(160, 120, small_scene_params(), seed);
-    std::vector<Track> all;
+    MultiBernoulliFilter f(160, 120, seeded(small_scene_params(), seed));
+    Tracks all;
     for (int k = 0; k < 10; ++k) {
       for (const auto& t : f.step(scene({{30 + 2 * k, 40, 12, 30}, {100, 10, 12, 30}})))
         all.push_back(t);
@@ -215,10 +221,10 @@ TEST(MultiBernoulli, SameSeedSameTracks) {
   ASSERT_EQ(a.size(), b.size());
   ASSERT_FALSE(a.empty());
   for (std::size_t i = 0; i < a.size(); ++i) {
-    EXPECT_EQ(a[i].label, b[i].label);
+    EXPECT_EQ(a[i].id, b[i].id);
     EXPECT_EQ(a[i].x, b[i].x);
     EXPECT_EQ(a[i].h, b[i].h);
-    EXPECT_EQ(a[i].existence, b[i].existence);
+    EXPECT_EQ(a[i].score, b[i].score);
   }
 }
 
@@ -226,7 +232,7 @@ TEST(MultiBernoulli, ParticleCountsFollowExistence) {
   MultiBernoulliParams p = small_scene_params();
   p.min_particles = 20;
   p.max_particles = 300;
-  MultiBernoulliFilter f(160, 120, p, 9);
+  MultiBernoulliFilter f(160, 120, seeded(p, 9));
   for (int k = 0; k < 6; ++k) f.step(scene({{60, 40, 12, 30}}));
   for (const auto& c : f.components()) {
     const auto expected = std::clamp<double>(std::ceil(c.existence * 300), 20, 300);
@@ -240,14 +246,14 @@ TEST(MultiBernoulli, ParticleCountsFollowExistence) {
 // dropped and every box scaled about its centre and shifted.
 TEST(MultiBernoulli, ConfirmationAndBoxTransformOnlyChangeTheOutput) {
   auto run = [](const MultiBernoulliParams& p) {
-    MultiBernoulliFilter f(160, 120, p, 4);
-    std::vector<std::vector<Track>> out;
+    MultiBernoulliFilter f(160, 120, seeded(p, 4));
+    std::vector<Tracks> out;
     for (int k = 0; k < 20; ++k) out.push_back(f.step(scene({{30 + 2 * k, 40, 12, 30}})));
     return out;
   };
   const MultiBernoulliParams paper = small_scene_params();
   MultiBernoulliParams p = paper;
-  p.confirm_frames = 4;
+  p.management.confirm_frames = 4;
   p.box_scale_w = 1.5;
   p.box_scale_h = 1.25;
   p.box_offset_y = 0.1;
@@ -255,16 +261,20 @@ TEST(MultiBernoulli, ConfirmationAndBoxTransformOnlyChangeTheOutput) {
   std::map<std::uint64_t, int> seen;
   int reported = 0;
   for (std::size_t k = 0; k < a.size(); ++k) {
-    std::vector<Track> expected;
-    for (const Track& t : a[k]) {
-      if (++seen[t.label] < 4) continue;
-      const float cx = t.x + 0.5f * t.w, cy = t.y + 0.5f * t.h + 0.1f * t.h;
-      expected.push_back({t.label, cx - 0.75f * t.w, cy - 0.625f * t.h, 1.5f * t.w, 1.25f * t.h,
-                          t.existence});
+    Tracks expected;
+    for (const TrackEstimate& t : a[k]) {
+      if (++seen[t.id] < 4) continue;
+      const double cx = t.x + 0.5 * t.w, cy = t.y + 0.5 * t.h + 0.1 * t.h;
+      TrackEstimate e = t;
+      e.x = cx - 0.75 * t.w;
+      e.y = cy - 0.625 * t.h;
+      e.w = 1.5 * t.w;
+      e.h = 1.25 * t.h;
+      expected.push_back(e);
     }
     ASSERT_EQ(b[k].size(), expected.size()) << "frame " << k;
     for (std::size_t i = 0; i < expected.size(); ++i) {
-      EXPECT_EQ(b[k][i].label, expected[i].label);
+      EXPECT_EQ(b[k][i].id, expected[i].id);
       EXPECT_NEAR(b[k][i].x, expected[i].x, 1e-3);
       EXPECT_NEAR(b[k][i].y, expected[i].y, 1e-3);
       EXPECT_NEAR(b[k][i].w, expected[i].w, 1e-3);
@@ -279,13 +289,13 @@ TEST(MultiBernoulli, ConfirmationAndBoxTransformOnlyChangeTheOutput) {
 TEST(MultiBernoulli, VelocityEstimateFollowsAWalkingPerson) {
   MultiBernoulliParams p = small_scene_params();
   p.velocity_smoothing = 0.3;
-  MultiBernoulliFilter f(160, 120, p, 5);
+  MultiBernoulliFilter f(160, 120, seeded(p, 5));
   for (int k = 0; k < 30; ++k) f.step(scene({{20 + 2 * k, 40, 12, 30}}));
   ASSERT_EQ(f.tracks().size(), 1u);
   for (const auto& c : f.components()) {
-    if (c.label != f.tracks()[0].label) continue;
-    EXPECT_NEAR(c.velocity[0], 2.0, 0.6);
-    EXPECT_NEAR(c.velocity[1], 0.0, 0.6);
+    if (c.label != f.tracks()[0].id) continue;
+    EXPECT_NEAR(c.record.velocity[0], 2.0, 0.6);
+    EXPECT_NEAR(c.record.velocity[1], 0.0, 0.6);
   }
 }
 
@@ -296,15 +306,15 @@ TEST(MultiBernoulli, LostMemoryGivesAReappearingPersonTheirLabelBack) {
   auto run = [](int memory) {
     MultiBernoulliParams p = small_scene_params();
     p.velocity_smoothing = 0.3;
-    p.lost_memory = memory;
-    MultiBernoulliFilter f(160, 120, p, 6);
+    p.management.lost_memory = memory;
+    MultiBernoulliFilter f(160, 120, seeded(p, 6));
     std::vector<std::uint64_t> before, after;
     for (int k = 0; k < 40; ++k) {
       const bool hidden = k >= 20 && k < 26;
       const auto tracks = f.step(scene(hidden ? std::vector<cv::Rect>{}
                                               : std::vector<cv::Rect>{{20 + 2 * k, 40, 12, 30}}));
       if (hidden && k >= 23) EXPECT_TRUE(tracks.empty()) << "frame " << k;
-      for (const auto& t : tracks) (k < 20 ? before : after).push_back(t.label);
+      for (const auto& t : tracks) (k < 20 ? before : after).push_back(t.id);
     }
     EXPECT_FALSE(before.empty());
     EXPECT_FALSE(after.empty());
@@ -334,9 +344,9 @@ TEST(MultiBernoulli, RejectsBadParametersNamingThem) {
   expect_error([](MultiBernoulliParams& p) { p.sigma_h = -1.0; }, "sigma_h");
   expect_error([](MultiBernoulliParams& p) { p.likelihood.delta_f = 0.0; }, "delta_f");
   expect_error([](MultiBernoulliParams& p) { p.width_max = 5.0; }, "width_max");
-  expect_error([](MultiBernoulliParams& p) { p.confirm_frames = 0; }, "confirm_frames");
-  expect_error([](MultiBernoulliParams& p) { p.lost_memory = -1; }, "lost_memory");
-  expect_error([](MultiBernoulliParams& p) { p.relabel_overlap = 0.0; }, "relabel_overlap");
+  expect_error([](MultiBernoulliParams& p) { p.management.confirm_frames = 0; }, "confirm_frames");
+  expect_error([](MultiBernoulliParams& p) { p.management.lost_memory = -1; }, "lost_memory");
+  expect_error([](MultiBernoulliParams& p) { p.management.relabel_overlap = 0.0; }, "relabel_overlap");
   expect_error([](MultiBernoulliParams& p) { p.velocity_smoothing = 1.5; }, "velocity_smoothing");
   expect_error([](MultiBernoulliParams& p) { p.box_scale_w = 0.0; }, "box_scale_w");
   expect_error([](MultiBernoulliParams& p) { p.box_offset_y = NAN; }, "box_offset_y");

@@ -61,10 +61,11 @@ TEST(ParticleGlmb, OneCertainTargetMatchesTheKalmanFilter) {
       2, Eigen::Matrix2d::Identity() * 100.0);
   const GaussianBirth birth{0.5, {Eigen::Vector4d(0, 1, 0, 1), Eigen::Matrix4d::Identity() * 400.0}};
   ParticleParams pp;
-  pp.particles = 4000;
-  pp.seed = 5;
+  pp.n_particles = 4000;
+  GlmbParams seeded = certain();
+  seeded.seed = 5;
   GaussianGlmbFilter kalman(motion, obs, {birth}, certain());
-  ParticleGlmbFilter particles(motion, obs, {birth}, certain(), pp);
+  ParticleGlmbFilter particles(motion, obs, {birth}, seeded, pp);
   core::Rng rng(8);
   Eigen::Vector4d truth(0, 1, 0, 1);
   for (int k = 1; k <= 20; ++k) {
@@ -77,7 +78,7 @@ TEST(ParticleGlmb, OneCertainTargetMatchesTheKalmanFilter) {
     ASSERT_EQ(b.size(), 1u) << "scan " << k;
     EXPECT_TRUE(a[0].label == b[0].label);
     for (int i = 0; i < 4; ++i) {
-      const double se = std::sqrt(a[0].cov(i, i) / (pp.particles / 4.0));
+      const double se = std::sqrt(a[0].cov(i, i) / (pp.n_particles / 4.0));
       EXPECT_NEAR(b[0].mean[i], a[0].mean[i], 5.0 * se) << "scan " << k << " component " << i;
       EXPECT_NEAR(b[0].cov(i, i), a[0].cov(i, i), 0.4 * a[0].cov(i, i)) << "scan " << k;
     }
@@ -87,9 +88,10 @@ TEST(ParticleGlmb, OneCertainTargetMatchesTheKalmanFilter) {
 TEST(ParticleGlmb, SameSeedSameTracksOtherSeedOtherParticles) {
   auto run = [](std::uint64_t seed) {
     ParticleParams pp;
-    pp.particles = 200;
-    pp.seed = seed;
-    ParticleGlmbFilter f(motion3(), observation3(), {birth3()}, GlmbParams{}, pp, depth_model());
+    pp.n_particles = 200;
+    GlmbParams p;
+    p.seed = seed;
+    ParticleGlmbFilter f(motion3(), observation3(), {birth3()}, p, pp, depth_model());
     cv::Mat depth = cv::Mat::zeros(120, 160, CV_32F);
     depth(cv::Rect(70, 40, 25, 60)).setTo(3.0f);
     std::vector<double> out;
@@ -109,7 +111,7 @@ TEST(ParticleGlmb, SameSeedSameTracksOtherSeedOtherParticles) {
 
 TEST(ParticleGlmb, RejectsBadInput) {
   ParticleParams pp;
-  pp.particles = 1;
+  pp.n_particles = 1;
   EXPECT_THROW(ParticleGlmbFilter(motion3(), observation3(), {birth3()}, GlmbParams{}, pp),
                InvalidArgument);
   auto bad_birth = birth3();
@@ -144,7 +146,7 @@ TEST(ParticleGlmb, VanishingLikelihoodsNeverProduceNaN) {
   GlmbParams p;
   p.gate_threshold = std::numeric_limits<double>::infinity();
   ParticleParams pp;
-  pp.particles = 100;
+  pp.n_particles = 100;
   ParticleGlmbFilter f(motion3(), observation3(), {birth3()}, p, pp, depth_model());
   cv::Mat depth(120, 160, CV_32F, cv::Scalar(1e6f));
   for (int k = 0; k < 5; ++k) {

@@ -1,29 +1,36 @@
 """vtrack: Bayesian visual multi-object tracking.
 
-The filters of four papers -- KDE background subtraction with a multi-Bernoulli
-track-before-detect tracker, SIR/MCMC particle filters, a GLMB tracker with Murty's ranked
-assignments, and colour/part-based particle filters -- in C++ with this Python API.
+The filters of four papers in C++ with this Python API. Built so far: kernel-density background
+subtraction with a multi-Bernoulli track-before-detect tracker (mb-tbd paper), and a labelled
+RFS (delta-GLMB) tracker with Murty's ranked assignments and the RGB-D switching observation
+model, plus a box tracker for any detector's output.
 
-This release holds the SMC core the trackers are built from, the KDE background model
-(``KdeBackground``, paper eqs. 6-10) that turns video frames into the grey image y, and the
-multi-Bernoulli track-before-detect tracker that consumes y (H x W float32, near 1 =
-background): ``vtrack.MultiBernoulliTracker((width, height), seed=1)`` and ``.step(y)`` per
-frame; ``vtrack.mot`` writes MOTChallenge files, ``python -m vtrack.evaluate`` scores them,
-``vtrack.synthetic`` makes scenes with exact ground truth. ``vtrack.GlmbTracker`` is the
-labelled RFS tracker (delta-GLMB with Gaussian or particle track densities, scenarios in
-``vtrack.scenarios``), built on ``linear_assignment``, Murty's k-best ``murty`` and the Gibbs
-sampler ``gibbs_assignments``; with ``particles=`` and a ``DepthLikelihood`` it is the RGB-D
-switching-observation tracker (``step(detections, depth=...)``, Kinect conversion
-``kinect_raw_to_depth``, synthetic scenes in ``vtrack.rgbd``); ``ospa``, ``ospa2`` and ``gospa``
-score it.
+The main entry points are here; the rest lives in submodules that mirror the C++ layers:
 
->>> import numpy as np, vtrack
->>> rng = vtrack.Rng(seed=1)
->>> w, log_z = vtrack.normalize_log_weights(np.log([0.1, 0.2, 0.7]))
->>> vtrack.effective_sample_size(w)  # 1 / sum(w**2)
-1.8518518518518516
->>> vtrack.resample(w, rng, method="systematic")
-array([1, 2, 2])
+============================  =========================================================
+``vtrack.pipelines``          :func:`track_video`, :func:`track_detections` (also here)
+``vtrack.trackers``           ``MultiBernoulliTracker``, ``GlmbTracker``, ``BoxTracker``, ``Tracks``
+``vtrack.image``              ``KdeBackground``, morphology, integral images, color histograms
+``vtrack.detectors``          ``HogPeopleDetector``
+``vtrack.models``             motion / observation models, the depth likelihood
+``vtrack.smc``                random engine, weights, ESS, resampling, Gaussians
+``vtrack.assign``             linear assignment, Murty, Gibbs assignments
+``vtrack.metrics``            OSPA, OSPA(2), GOSPA (CLEAR-MOT/IDF1/HOTA: ``vtrack.evaluate``)
+``vtrack.io``                 MOTChallenge files, config files, video probing
+``vtrack.vehicles``           road camera, vehicle ray observation, class prior
+``vtrack.synthetic``, ``vtrack.scenarios``, ``vtrack.rgbd``, ``vtrack.synthetic_road``,
+``vtrack.synthetic_occlusion``: scenes with exact ground truth; ``vtrack.detsim``: a simulated
+detector on real trajectories
+============================  =========================================================
+
+Every component takes keyword parameters with the papers' defaults -- the names config files and
+``vtrack track --set`` take -- has ``default_params()`` and ``.params``, and rejects an unknown
+or wrongly typed keyword with a ``TypeError`` naming it. Every multi-object tracker's ``step``
+returns a :class:`Tracks`.
+
+>>> import vtrack
+>>> rows = vtrack.track_video("vtest.avi", method="mb", seed=0)        # doctest: +SKIP
+>>> rows = vtrack.track_video("vtest.avi", method="glmb", detector="hog")  # doctest: +SKIP
 
 NumPy arrays go in and out without copies where the layout allows; wrong dtypes raise
 ``TypeError``, wrong shapes or values ``ValueError`` (C++ errors arrive as
@@ -31,95 +38,58 @@ NumPy arrays go in and out without copies where the layout allows; wrong dtypes 
 """
 
 from ._core import (
-    BernoulliComponent,
-    bgr_to_rgi,
     BoxTracker,
-    close_square,
-    DepthLikelihood,
-    effective_sample_size,
-    foreground_mask,
     Gaussian,
-    gibbs_assignments,
-    GlmbEstimate,
     GlmbTracker,
-    gospa,
-    GospaResult,
     HogPeopleDetector,
-    IntegralImage,
     InvalidArgument,
+    InvalidType,
     IoError,
     KdeBackground,
-    kinect_depth_to_raw,
-    kinect_raw_to_depth,
-    linear_assignment,
     LinearGaussianMotion,
     LinearGaussianObservation,
-    log_sum_exp,
     MultiBernoulliTracker,
-    murty,
-    normalize_log_weights,
-    ospa,
-    ospa2,
-    OspaResult,
-    probe_video,
-    read_detections,
-    resample,
     Rng,
-    Track,
-    track_detections,
-    track_video,
-    VideoInfo,
+    Tracks,
     __version__,
 )
-
-# Pure-Python modules built on the compiled ones above.
-from . import mot, rgbd, scenarios, synthetic  # noqa: E402
-
-RESAMPLING_METHODS = ("multinomial", "stratified", "systematic", "residual")
+from . import assign, detectors, image, io, metrics, models, pipelines, smc, trackers  # noqa: E402
+from . import detsim, rgbd, scenarios, synthetic, synthetic_occlusion, synthetic_road, vehicles  # noqa: E402,E501
+from .io import load_config  # noqa: E402
+from .pipelines import track_detections, track_video  # noqa: E402
 
 __all__ = [
-    "BernoulliComponent",
-    "bgr_to_rgi",
     "BoxTracker",
-    "close_square",
-    "DepthLikelihood",
-    "effective_sample_size",
-    "foreground_mask",
     "Gaussian",
-    "gibbs_assignments",
-    "GlmbEstimate",
     "GlmbTracker",
-    "gospa",
-    "GospaResult",
     "HogPeopleDetector",
-    "IntegralImage",
     "InvalidArgument",
+    "InvalidType",
     "IoError",
     "KdeBackground",
-    "kinect_depth_to_raw",
-    "kinect_raw_to_depth",
-    "linear_assignment",
     "LinearGaussianMotion",
     "LinearGaussianObservation",
-    "log_sum_exp",
-    "mot",
     "MultiBernoulliTracker",
-    "murty",
-    "normalize_log_weights",
-    "ospa",
-    "ospa2",
-    "OspaResult",
-    "probe_video",
-    "read_detections",
-    "resample",
-    "RESAMPLING_METHODS",
-    "rgbd",
     "Rng",
+    "Tracks",
+    "__version__",
+    "assign",
+    "detectors",
+    "detsim",
+    "image",
+    "io",
+    "load_config",
+    "metrics",
+    "models",
+    "pipelines",
+    "rgbd",
     "scenarios",
+    "smc",
     "synthetic",
-    "Track",
+    "synthetic_occlusion",
+    "synthetic_road",
     "track_detections",
     "track_video",
-    "VideoInfo",
-    "__version__",
+    "trackers",
+    "vehicles",
 ]

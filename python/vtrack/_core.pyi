@@ -1,7 +1,7 @@
 """Type stubs for the compiled module vtrack._core (use the public names in `vtrack`)."""
 
 from os import PathLike
-from typing import Any, Dict, List, Literal, Optional, Sequence, Tuple, Union, overload
+from typing import Any, Callable, Dict, List, Literal, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -9,10 +9,33 @@ import numpy.typing as npt
 __version__: str
 
 class InvalidArgument(ValueError): ...
+class InvalidType(TypeError): ...
 class IoError(OSError): ...
 
 ArrayLike = npt.ArrayLike
 RngLike = Union["Rng", int]
+
+# ---- the one estimate type --------------------------------------------------------------------
+
+class Tracks:
+    """What every multi-object tracker's step() returns (see vtrack.trackers)."""
+
+    @property
+    def ids(self) -> npt.NDArray[np.int64]: ...
+    @property
+    def boxes(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def scores(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def states(self) -> Optional[npt.NDArray[np.float64]]: ...
+    @property
+    def covariances(self) -> Optional[npt.NDArray[np.float64]]: ...
+    @property
+    def labels(self) -> Optional[npt.NDArray[np.int64]]: ...
+    def __len__(self) -> int: ...
+
+def mot_rows(frame: int, tracks: Tracks) -> npt.NDArray[np.float64]: ...
+def write_mot(path: Union[str, PathLike[str]], rows: ArrayLike) -> None: ...
 
 # ---- core ---------------------------------------------------------------------------------------
 
@@ -61,7 +84,7 @@ class KdeBackground:
         *,
         n_samples: int = 10,
         period: int = 10,
-        bandwidth: ArrayLike = (0.03, 0.03, 0.06),
+        bandwidth: Tuple[float, float, float] = (0.03, 0.03, 0.06),
         closing: int = 5,
         threads: int = 0,
         update_threshold: float = 0.5,
@@ -79,21 +102,9 @@ class KdeBackground:
     @property
     def sample_frames(self) -> List[int]: ...
     @property
-    def n_samples(self) -> int: ...
-    @property
-    def period(self) -> int: ...
-    @property
-    def bandwidth(self) -> Tuple[float, float, float]: ...
-    @property
-    def closing(self) -> int: ...
-    @property
-    def threads(self) -> int: ...
-    @property
-    def update_threshold(self) -> float: ...
-    @property
-    def update_max_skips(self) -> int: ...
-    @property
-    def illumination_compensation(self) -> bool: ...
+    def params(self) -> Dict[str, Any]: ...
+    @staticmethod
+    def default_params() -> Dict[str, Any]: ...
 
 def foreground_mask(y: npt.NDArray[np.float32], *, threshold: float) -> npt.NDArray[np.uint8]: ...
 def close_square(
@@ -107,6 +118,47 @@ class IntegralImage:
     def sum(self, x: int, y: int, width: int, height: int) -> float: ...
     def area(self, x: int, y: int, width: int, height: int) -> int: ...
     def sums(self, rects: ArrayLike) -> npt.NDArray[np.float64]: ...
+
+# ---- color histograms (part-based paper section 3.1, eqs. 9-11) --------------------------------
+
+Box = Union[Sequence[float], npt.NDArray[np.float64]]
+
+def hsv_bins(
+    frame: npt.NDArray[np.uint8], *, bins: Tuple[int, int, int] = (16, 4, 4)
+) -> npt.NDArray[np.uint16]: ...
+def hsv_histogram(
+    frame: npt.NDArray[np.uint8], box: Box, *, bins: Tuple[int, int, int] = (16, 4, 4),
+    kernel: bool = False,
+) -> npt.NDArray[np.float64]: ...
+def bhattacharyya_coefficient(p: ArrayLike, q: ArrayLike) -> float: ...
+def bhattacharyya_distance(p: ArrayLike, q: ArrayLike) -> float: ...
+@overload
+def color_log_likelihood(rho: float, *, sigma: float = ...) -> float: ...
+@overload
+def color_log_likelihood(rho: npt.NDArray[np.float64], *, sigma: float = ...) -> npt.NDArray[np.float64]: ...
+
+class ColorModel:
+    """Template color histogram and batch Bhattacharyya scoring of (N, 4) boxes (eqs. 9-11)."""
+
+    def __init__(
+        self, frame: npt.NDArray[np.uint8], box: Box, *, bins: Tuple[int, int, int] = (16, 4, 4),
+        kernel: bool = False,
+    ) -> None: ...
+    @staticmethod
+    def from_histogram(hist: ArrayLike, *, kernel: bool = False) -> "ColorModel": ...
+    @property
+    def reference(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def bins(self) -> Tuple[int, int, int]: ...
+    @property
+    def kernel(self) -> bool: ...
+    def coefficients(
+        self, frame: npt.NDArray[np.uint8], boxes: ArrayLike, *,
+        method: Literal["auto", "direct", "incremental"] = "auto",
+    ) -> npt.NDArray[np.float64]: ...
+    def log_likelihood(
+        self, frame: npt.NDArray[np.uint8], boxes: ArrayLike, *, sigma: float = ...
+    ) -> npt.NDArray[np.float64]: ...
 
 # ---- models -------------------------------------------------------------------------------------
 
@@ -143,10 +195,11 @@ class DepthLikelihood:
         cx: Optional[float] = None,
         cy: Optional[float] = None,
         *,
-        person_size: Tuple[float, float] = (0.5, 1.7),
+        person_width: float = 0.5,
+        person_height: float = 1.7,
         sigma_target: float = 1.0,
         sigma_background: float = 1.0,
-        tempering: float = 3e-4,
+        tempering: float = 0.0003,
         min_depth: float = 0.1,
     ) -> None: ...
     def footprint(self, position: ArrayLike) -> Tuple[int, int, int, int]: ...
@@ -166,23 +219,11 @@ class DepthLikelihood:
     @property
     def cy(self) -> float: ...
     @property
-    def person_size(self) -> Tuple[float, float]: ...
-    @property
-    def sigma_target(self) -> float: ...
-    @property
-    def sigma_background(self) -> float: ...
-    @property
-    def tempering(self) -> float: ...
+    def params(self) -> Dict[str, Any]: ...
+    @staticmethod
+    def default_params() -> Dict[str, Any]: ...
 
 # ---- filters: GLMB ------------------------------------------------------------------------------
-
-class GlmbEstimate:
-    @property
-    def label(self) -> Tuple[int, int]: ...
-    @property
-    def mean(self) -> npt.NDArray[np.float64]: ...
-    @property
-    def cov(self) -> npt.NDArray[np.float64]: ...
 
 class GlmbTracker:
     def __init__(
@@ -191,30 +232,35 @@ class GlmbTracker:
         observation: LinearGaussianObservation,
         births: Sequence[Tuple[float, ArrayLike, ArrayLike]],
         *,
+        adaptive_birth_cov: Optional[ArrayLike] = None,
+        depth_model: Optional[DepthLikelihood] = None,
         survival_probability: float = 0.99,
         detection_probability: float = 0.98,
-        clutter_intensity: float = 7.5e-6,
+        clutter_intensity: float = 7.5e-06,
         hypothesis_budget: int = 1000,
         max_hypotheses: int = 1000,
         prune_threshold: float = 1e-15,
         gate_threshold: float = 32.24,
-        adaptive_birth_cov: Optional[ArrayLike] = None,
         adaptive_birth_rate: float = 0.1,
         adaptive_birth_max_existence: float = 0.03,
-        ranking: str = "murty",
-        particles: Optional[int] = None,
-        depth_model: Optional[DepthLikelihood] = None,
-        resample_threshold: float = 0.5,
+        ranking: Literal["murty", "gibbs"] = 'murty',
         seed: int = 0,
+        densities: Literal["gaussian", "particles"] = 'gaussian',
+        n_particles: int = 500,
+        resample_threshold: float = 0.5,
         depth_for_births: bool = True,
         mask_detections: bool = True,
         occlusion_margin: float = 0.3,
         occluded_detection_probability: bool = False,
+        confirm_frames: int = 1,
+        lost_memory: int = 0,
+        relabel_overlap: float = 0.3,
     ) -> None: ...
     def step(
         self, detections: ArrayLike, depth: Optional[npt.NDArray[Union[np.float32, np.float64]]] = None
-    ) -> List[GlmbEstimate]: ...
-    def estimates(self) -> List[GlmbEstimate]: ...
+    ) -> Tracks: ...
+    @property
+    def tracks(self) -> Tracks: ...
     def cardinality_distribution(self) -> npt.NDArray[np.float64]: ...
     @property
     def map_cardinality(self) -> int: ...
@@ -225,9 +271,11 @@ class GlmbTracker:
     @property
     def time(self) -> int: ...
     @property
-    def particles(self) -> Optional[int]: ...
-    @property
     def has_depth_model(self) -> bool: ...
+    @property
+    def params(self) -> Dict[str, Any]: ...
+    @staticmethod
+    def default_params() -> Dict[str, Any]: ...
 
 # ---- filters: assignment and metrics -----------------------------------------------------------
 
@@ -270,22 +318,6 @@ def gospa(truth: ArrayLike, estimates: ArrayLike, c: float, p: float = 1.0) -> G
 def ospa2(x: ArrayLike, y: ArrayLike, c: float, p: float = 1.0) -> OspaResult: ...
 # ---- filters ------------------------------------------------------------------------------------
 
-class Track:
-    @property
-    def label(self) -> int: ...
-    @property
-    def x(self) -> float: ...
-    @property
-    def y(self) -> float: ...
-    @property
-    def w(self) -> float: ...
-    @property
-    def h(self) -> float: ...
-    @property
-    def existence(self) -> float: ...
-    @property
-    def box(self) -> Tuple[float, float, float, float]: ...
-
 class BernoulliComponent:
     @property
     def label(self) -> int: ...
@@ -305,52 +337,52 @@ class MultiBernoulliTracker:
         self,
         image_size: Tuple[int, int],
         *,
+        delta_f: float = 0.1,
+        delta_b: float = 0.002,
+        closing_size: int = 0,
+        survival_probability: float = 0.99,
+        sigma_x: float = 5.0,
+        sigma_y: float = 5.0,
+        sigma_w: float = 1.5,
+        sigma_h: float = 2.0,
+        width_mean: float = 30.0,
+        width_std: float = 8.0,
+        height_mean: float = 85.0,
+        height_std: float = 20.0,
+        width_min: float = 12.0,
+        width_max: float = 64.0,
+        height_min: float = 40.0,
+        height_max: float = 150.0,
+        quarter_birth: bool = True,
+        birth_probability: float = 0.02,
+        birth_particles: int = 200,
+        cover_existence: float = 0.1,
+        established_age: int = 3,
+        adaptive_birth: bool = True,
+        adaptive_birth_probability: float = 0.05,
+        adaptive_birth_log_likelihood: float = -3.0,
+        adaptive_birth_stride: int = 8,
+        adaptive_birth_max: int = 3,
+        min_particles: int = 50,
+        max_particles: int = 400,
+        resampling: Literal["multinomial", "stratified", "systematic", "residual"] = 'systematic',
+        prune_threshold: float = 0.01,
+        merge_overlap: float = 0.6,
+        estimate_threshold: float = 0.5,
+        max_existence: float = 0.999,
+        confirm_frames: int = 5,
+        lost_memory: int = 30,
+        relabel_overlap: float = 0.3,
+        velocity_smoothing: float = 0.3,
+        box_scale_w: float = 1.75,
+        box_scale_h: float = 1.47,
+        box_offset_x: float = -0.01,
+        box_offset_y: float = -0.01,
         seed: int = 0,
-        delta_f: float = ...,
-        delta_b: float = ...,
-        closing_size: int = ...,
-        survival_probability: float = ...,
-        sigma_x: float = ...,
-        sigma_y: float = ...,
-        sigma_w: float = ...,
-        sigma_h: float = ...,
-        width_mean: float = ...,
-        width_std: float = ...,
-        height_mean: float = ...,
-        height_std: float = ...,
-        width_min: float = ...,
-        width_max: float = ...,
-        height_min: float = ...,
-        height_max: float = ...,
-        quarter_birth: bool = ...,
-        birth_probability: float = ...,
-        birth_particles: int = ...,
-        adaptive_birth: bool = ...,
-        adaptive_birth_probability: float = ...,
-        adaptive_birth_log_likelihood: float = ...,
-        cover_existence: float = ...,
-        established_age: int = ...,
-        adaptive_birth_stride: int = ...,
-        adaptive_birth_max: int = ...,
-        min_particles: int = ...,
-        max_particles: int = ...,
-        resampling: Literal["multinomial", "stratified", "systematic", "residual"] = ...,
-        prune_threshold: float = ...,
-        merge_overlap: float = ...,
-        estimate_threshold: float = ...,
-        max_existence: float = ...,
-        confirm_frames: int = ...,
-        lost_memory: int = ...,
-        relabel_overlap: float = ...,
-        velocity_smoothing: float = ...,
-        box_scale_w: float = ...,
-        box_scale_h: float = ...,
-        box_offset_x: float = ...,
-        box_offset_y: float = ...,
     ) -> None: ...
-    def step(self, y: npt.NDArray[np.float32]) -> List[Track]: ...
+    def step(self, y: npt.NDArray[np.float32]) -> Tracks: ...
     @property
-    def tracks(self) -> List[Track]: ...
+    def tracks(self) -> Tracks: ...
     @property
     def components(self) -> List[BernoulliComponent]: ...
     @property
@@ -378,15 +410,23 @@ class VideoInfo:
 
 def probe_video(path: Union[str, PathLike[str]]) -> VideoInfo: ...
 
+def load_config(path: Union[str, PathLike[str]]) -> Dict[str, Any]: ...
+def pipeline_params(
+    method: str,
+    detector: str,
+    config: Dict[str, Any],
+    params: Dict[str, Any],
+    settings: List[str],
+) -> Dict[str, Dict[str, Any]]: ...
 def track_video(
-    path: Union[str, PathLike[str]],
-    method: Literal["mb"] = "mb",
-    *,
-    seed: int = 0,
-    render: Optional[Union[str, PathLike[str]]] = None,
-    background: Optional[Dict[str, Any]] = None,
-    **tracker: Any,
-) -> npt.NDArray[np.float64]: ...
+    video: Union[str, PathLike[str]],
+    method: str,
+    detector: str,
+    config: Dict[str, Any],
+    params: Dict[str, Any],
+    render: Optional[Union[str, PathLike[str]]],
+    progress: Optional[Callable[[int, int], None]],
+) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], int]: ...
 
 # ---- detection-driven tracking ------------------------------------------------------------------
 
@@ -396,60 +436,47 @@ def read_detections(
 
 def track_detections(
     detections: Union[str, PathLike[str], ArrayLike],
-    image_size: Optional[Tuple[float, float]] = None,
-    *,
-    last_frame: int = 0,
-    detection_probability: float = ...,
-    survival_probability: float = ...,
-    outside_survival_probability: float = ...,
-    outside_detection_probability: float = ...,
-    clutter_rate: float = ...,
-    sigma_accel: float = ...,
-    sigma_size: float = ...,
-    detection_sd_centre: float = ...,
-    detection_sd_size: float = ...,
-    birth_sd_centre: float = ...,
-    birth_sd_velocity: float = ...,
-    birth_sd_size: float = ...,
-    birth_rate: float = ...,
-    birth_max_existence: float = ...,
-    hypothesis_budget: int = ...,
-    gate_threshold: float = ...,
-    min_confidence: float = ...,
-    min_age: int = ...,
-    gibbs_ranking: bool = ...,
-    seed: int = ...,
+    image_size: Optional[Tuple[int, int]],
+    last_frame: int,
+    params: Dict[str, Any],
+    progress: Optional[Callable[[int, int], None]],
 ) -> npt.NDArray[np.float64]: ...
 
 class BoxTracker:
     def __init__(
         self,
-        image_size: Tuple[float, float],
+        image_size: Tuple[int, int],
         *,
-        detection_probability: float = ...,
-        survival_probability: float = ...,
-        outside_survival_probability: float = ...,
-        outside_detection_probability: float = ...,
-        clutter_rate: float = ...,
-        sigma_accel: float = ...,
-        sigma_size: float = ...,
-        detection_sd_centre: float = ...,
-        detection_sd_size: float = ...,
-        birth_sd_centre: float = ...,
-        birth_sd_velocity: float = ...,
-        birth_sd_size: float = ...,
-        birth_rate: float = ...,
-        birth_max_existence: float = ...,
-        hypothesis_budget: int = ...,
-        gate_threshold: float = ...,
+        detection_probability: float = 0.8,
+        survival_probability: float = 0.99,
+        outside_survival_probability: float = 0.1,
+        outside_detection_probability: float = 0.1,
+        clutter_rate: float = 1.0,
+        sigma_accel: float = 2.0,
+        sigma_size: float = 1.0,
+        detection_sd_centre: float = 8.0,
+        detection_sd_size: float = 10.0,
+        birth_sd_centre: float = 10.0,
+        birth_sd_velocity: float = 5.0,
+        birth_sd_size: float = 10.0,
+        birth_rate: float = 0.5,
+        birth_max_existence: float = 0.3,
+        hypothesis_budget: int = 200,
+        gate_threshold: float = 38.24,
         min_confidence: float = ...,
-        min_age: int = ...,
-        gibbs_ranking: bool = ...,
-        seed: int = ...,
+        confirm_frames: int = 1,
+        lost_memory: int = 0,
+        relabel_overlap: float = 0.3,
+        ranking: Literal["murty", "gibbs"] = 'murty',
+        seed: int = 0,
     ) -> None: ...
-    def step(self, boxes: ArrayLike) -> npt.NDArray[np.float64]: ...
+    def step(self, boxes: ArrayLike) -> Tracks: ...
     @property
     def frame(self) -> int: ...
+    @property
+    def image_size(self) -> Tuple[int, int]: ...
+    @property
+    def params(self) -> Dict[str, Any]: ...
     @staticmethod
     def default_params() -> Dict[str, Any]: ...
 
@@ -457,17 +484,111 @@ class HogPeopleDetector:
     def __init__(
         self,
         *,
-        hit_threshold: float = ...,
-        win_stride: int = ...,
-        padding: int = ...,
-        scale: float = ...,
-        upscale: float = ...,
-        group_threshold: int = ...,
-        min_score: float = ...,
-        person_fraction: float = ...,
+        hit_threshold: float = 0.0,
+        win_stride: int = 8,
+        padding: int = 8,
+        scale: float = 1.1,
+        upscale: float = 1.5,
+        group_threshold: int = 2,
+        min_score: float = 0.0,
+        person_fraction: float = 0.75,
     ) -> None: ...
     def detect(self, frame: npt.NDArray[np.uint8]) -> npt.NDArray[np.float64]: ...
     @property
     def params(self) -> Dict[str, Any]: ...
     @staticmethod
     def default_params() -> Dict[str, Any]: ...
+
+# ---- vehicles: road camera, ray observation, class prior (particle-filters-human-vehicle §3) -----
+
+class Camera:
+    def __init__(
+        self,
+        K: ArrayLike,
+        dist: ArrayLike,
+        R: ArrayLike,
+        t: ArrayLike,
+        *,
+        road_axis_world: ArrayLike = [0.0, 1.0, 0.0],
+        image_size: Optional[Tuple[int, int]] = None,
+    ) -> None: ...
+    @property
+    def K(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def dist(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def R(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def t(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def image_size(self) -> Optional[Tuple[int, int]]: ...
+    @property
+    def has_distortion(self) -> bool: ...
+    @property
+    def centre(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def road_axis(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def lateral_axis(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def road_to_image_homography(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def image_to_road_homography(self) -> npt.NDArray[np.float64]: ...
+    def project(self, points: ArrayLike) -> npt.NDArray[np.float64]: ...
+    def undistort(self, pixels: ArrayLike) -> npt.NDArray[np.float64]: ...
+    def rays(self, pixels: ArrayLike) -> npt.NDArray[np.float64]: ...
+    def image_to_road(self, pixels: ArrayLike) -> npt.NDArray[np.float64]: ...
+    def road_to_image(self, road: ArrayLike) -> npt.NDArray[np.float64]: ...
+
+def read_camera_file(path: Union[str, PathLike]) -> Camera: ...
+
+class VehicleObservation:
+    @property
+    def road_polygon(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def box(self) -> Tuple[float, float, float, float]: ...
+    @property
+    def reference_world(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def far_corner_world(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def w_axis_world(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def l_axis_world(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def camera_within_width(self) -> bool: ...
+    @property
+    def camera_within_length(self) -> bool: ...
+    @property
+    def a(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def b(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def plucker(self) -> npt.NDArray[np.float64]: ...
+    def to_whl(self, world: ArrayLike) -> npt.NDArray[np.float64]: ...
+    def to_world(self, whl: ArrayLike) -> npt.NDArray[np.float64]: ...
+    def point_at_height(self, h: float) -> npt.NDArray[np.float64]: ...
+    def feasible_heights(self, min_size: ArrayLike) -> Tuple[float, float]: ...
+    def project(self, whl: ArrayLike) -> npt.NDArray[np.float64]: ...
+    def distance(self, whl: ArrayLike) -> npt.NDArray[np.float64]: ...
+    def log_likelihood(
+        self, whl: ArrayLike, *, sigma_w: float = 0.25, sigma_h: float = 0.25, sigma_l: float = 0.25
+    ) -> npt.NDArray[np.float64]: ...
+
+def observe_vehicle(camera: Camera, silhouette: ArrayLike, *, max_edge_px: float = 4.0) -> VehicleObservation: ...
+def table1_vehicle_models() -> List[Dict[str, Any]]: ...
+def read_vehicle_models_file(path: Union[str, PathLike]) -> List[Dict[str, Any]]: ...
+
+class VehicleModelPrior:
+    def __init__(
+        self, models: Optional[List[Dict[str, Any]]] = None, *, min_size: ArrayLike = [0.4, 0.6, 1.0]
+    ) -> None: ...
+    @property
+    def models(self) -> List[Dict[str, Any]]: ...
+    @property
+    def names(self) -> List[str]: ...
+    @property
+    def min_size(self) -> npt.NDArray[np.float64]: ...
+    def log_density(self, whl: ArrayLike) -> npt.NDArray[np.float64]: ...
+    def class_log_posteriors(self, whl: ArrayLike) -> npt.NDArray[np.float64]: ...
+    def map_class(self, whl: ArrayLike) -> npt.NDArray[np.int32]: ...

@@ -1,12 +1,16 @@
 """Many videos at once on Dask: ``vtrack batch`` (the C++ CLI runs ``python -m vtrack.batch``).
 
-    vtrack batch INPUTS... --out DIR [--method mb] [--detector hog] [--config FILE]
+    vtrack batch INPUTS... --out DIR [--method mb|glmb] [--detector hog] [--config FILE]
                  [--set name=value ...] [--seed N] [--render] [--gt PATTERN]
                  [--workers N | --scheduler ADDRESS] [--force]
 
 and from Python ``vtrack.batch.track_many(inputs, out_dir, client=None, **params)``. One Dask
-task tracks one input, exactly as ``vtrack track`` would (same parameters, same seed, same bytes
-in ``tracks.txt``). docs/batch.md is the user's guide; the definitions:
+task tracks one input with :func:`vtrack.track_video`, exactly as ``vtrack track`` would (same
+parameters, same seed, same bytes in ``tracks.txt``, written by the same C++ writer). The
+parameters are resolved once, in the client, by :func:`vtrack.pipelines.pipeline_params` (the
+C++ parameter tables: defaults, ``--config``, ``--seed``, ``--set``, as ``vtrack track`` and
+``vtrack params`` resolve them), and every task gets all of them. docs/batch.md is the user's
+guide; the definitions:
 
 INPUTS    video files, image folders, glob patterns (expanded here, ``**`` included) and text files
           (``.txt``, ``.lst``, ``.list``) listing them one per line (blank lines and ``#`` comments
@@ -18,8 +22,8 @@ names     results go to ``DIR/<name>/``: a video's file stem, an image folder's 
           ``cam.mp4`` -> ``cam.avi``, ``cam.mp4`` (a hash of the path when nothing else
           separates them). The rule depends on the set of inputs, not on their order.
 outputs   ``tracks.txt`` (MOTChallenge), ``render.mp4`` (--render), ``run.json`` (input,
-          parameters, vtrack version, seed, frames, seconds, fps, status, error, metrics, worker),
-          and ``DIR/summary.csv`` (``input,name,status,frames,seconds,fps,error`` and, with --gt,
+          method, detector, every parameter in force, vtrack version, seed, frames, seconds,
+          fps, status, error, metrics, worker), and ``DIR/summary.csv`` (``input,name,status,frames,seconds,fps,error`` and, with --gt,
           ``HOTA,MOTA,IDF1``; one row per finished input, in input order), rewritten as results
           arrive (at most once a second, and at the end). Every file is written under a temporary
           name and renamed when whole.
@@ -39,8 +43,9 @@ faults    an input's error (OSError from the reader: missing, corrupt, truncated
           ``{dir}`` (the input's folder) or ``{input}``, e.g. ``MOT15/train/{name}/gt/gt.txt``;
           metrics by :func:`vtrack.evaluate.evaluate` (TrackEval). A missing ground-truth file
           leaves the metrics empty and says so in the error column; the input stays ``ok``.
-exit      0 every input ok, 1 some input failed, 2 a usage error (bad option or parameter, no
-          inputs, Dask or TrackEval missing), 130 interrupted.
+exit      0 every input ok, 1 some input failed or the scheduler cannot be reached, 2 a usage
+          error (bad option or parameter, no inputs, an output folder that overlaps an input,
+          Dask or TrackEval missing), 130 interrupted.
 
 One task per input. A very long video is one long task; to spread it, cut it into segments (e.g.
 ``ffmpeg -ss START -t LENGTH -c copy``, or image folders of frame ranges) that overlap by at least
@@ -62,7 +67,6 @@ import os
 import signal
 import socket
 import sys
-import tempfile
 import threading
 import time
 import uuid
@@ -73,12 +77,9 @@ from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from ._files import atomic_open, is_temporary
+from .pipelines import METHODS
 
 PathLike = Union[str, "os.PathLike[str]"]
-
-# The methods and detectors vtrack.track_video runs (the lead's reshape adds glmb + hog).
-METHODS = ("mb",)
-DETECTORS = ("hog",)
 
 TRACKS = "tracks.txt"
 RENDER = "render.mp4"
@@ -101,56 +102,19 @@ class UsageError(ValueError):
 def _track_one(video: str, job: Dict[str, Any], render: Optional[str]) -> Tuple[np.ndarray, int]:
     """Track one input as ``vtrack track`` would: ``(rows (N, 10) MOT, frames decoded)``.
 
-    The only function that knows ``vtrack.track_video``'s signature. `job` is :func:`make_job`'s:
-    method, detector, seed, config (the config file's sections), params (``--set``).
+    `job` is :func:`make_job`'s: the method, the detector and every section's parameters (what
+    :func:`vtrack.pipelines.pipeline_params` resolved), passed back as the config.
     """
-    import vtrack  # noqa: PLC0415 - imported on the worker
+    from .pipelines import track_video  # noqa: PLC0415 - imported on the worker
 
-    if job["detector"] is not None:
-        raise ValueError(f"detector {job['detector']!r} needs a method that uses detections")
-    config = job["config"]
-    tracker = dict(config.get("tracker", {}))
-    background = dict(config.get("background", {}))
-    tracker_names = vtrack.MultiBernoulliTracker.default_params()
-    for name, value in job["params"].items():
-        (tracker if name in tracker_names else background)[name] = value
-    # One worker per core: the KDE's own OpenCV threads would only oversubscribe the cores (the
-    # tracks do not depend on it).
-    background.setdefault("threads", 1)
-    rows = vtrack.track_video(video, job["method"], seed=job["seed"], render=render,
-                              background=background, **tracker)
-    # track_video does not report the frame count yet: decode once more to count.
-    return rows, vtrack.probe_video(video).frame_count
+    frames = [0]
 
+    def count(done: int, total: int) -> None:  # the pipeline reports every frame it tracked
+        frames[0] = done
 
-def _load_config(path: str) -> Dict[str, Any]:
-    """A config file's sections as a dict (YAML or JSON, read as ``vtrack track`` reads it)."""
-    import vtrack  # noqa: PLC0415
-
-    if hasattr(vtrack, "load_config"):
-        return dict(vtrack.load_config(path))
-    # Until vtrack.load_config is bound: OpenCV's FileStorage, the parser of the C++ CLI.
-    try:
-        import cv2  # noqa: PLC0415
-    except ImportError as err:
-        raise UsageError("--config needs vtrack.load_config or OpenCV's Python package") from err
-    if not os.path.isfile(path):
-        raise UsageError(f"config file '{path}' does not exist")
-    storage = cv2.FileStorage(path, cv2.FILE_STORAGE_READ)
-    if not storage.isOpened():
-        raise UsageError(f"cannot parse config file '{path}'")
-
-    def value(node):
-        if node.isMap():
-            return {key: value(node.getNode(key)) for key in node.keys()}
-        if node.isInt():
-            return int(node.real())
-        if node.isReal():
-            return float(node.real())
-        text = node.string()
-        return {"true": True, "false": False}.get(text, text)
-
-    return value(storage.root())
+    rows = track_video(video, job["method"], detector=job["detector"], config=job["parameters"],
+                       render=render, progress=count)
+    return rows, frames[0]
 
 
 # ---- inputs -----------------------------------------------------------------------------------
@@ -255,52 +219,37 @@ def expand_inputs(items: Union[PathLike, Iterable[PathLike]]) -> List[Input]:
 # ---- parameters --------------------------------------------------------------------------------
 
 
-def parse_setting(text: str) -> Tuple[str, Any]:
-    """``name=value`` as ``vtrack track --set`` reads it: true/false, an integer, a real, else
-    the text (e.g. ``resampling=residual``)."""
-    name, eq, raw = text.partition("=")
-    if not eq or not name:
-        raise UsageError(f"--set expects name=value, got '{text}'")
-    if raw in ("true", "false"):
-        return name, raw == "true"
-    for kind in (int, float):
-        try:
-            return name, kind(raw)
-        except ValueError:
-            pass
-    return name, raw
-
-
 def make_job(method: str = "mb", detector: Optional[str] = None, config: Optional[PathLike] = None,
-             seed: Optional[int] = None, render: bool = False, **params) -> Dict[str, Any]:
-    """What every task runs with, as recorded in run.json: the method, the detector, the seed
-    (`seed`, else the config file's, else 0), the config file's sections and the parameters
-    given one by one (they override the config file's)."""
+             settings: Sequence[str] = (), render: bool = False, **params) -> Dict[str, Any]:
+    """What every task runs with, as recorded in run.json: the method, the detector and every
+    parameter of the method's sections, resolved as ``vtrack track`` resolves them (defaults, the
+    config file, `params`, then `settings` -- ``"name=value"`` texts of ``--set``) by
+    :func:`vtrack.pipelines.pipeline_params`; TypeError / ValueError naming a bad parameter.
+
+    One batch policy on top: a KDE background's ``threads`` left at its default (0, OpenCV's
+    choice) becomes 1, since the cores are already shared out one worker process each (the
+    tracks do not depend on it)."""
+    from .pipelines import pipeline_params  # noqa: PLC0415
+
     if method not in METHODS:
         raise UsageError(f"method must be one of {', '.join(METHODS)}, got {method!r}")
-    if detector is not None and detector not in DETECTORS:
-        raise UsageError(f"detector must be one of {', '.join(DETECTORS)}, got {detector!r}")
-    sections = _load_config(os.fspath(config)) if config is not None else {}
-    if seed is None:
-        seed = sections.pop("seed", 0)
-    else:
-        sections.pop("seed", None)
-    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
-        raise UsageError(f"seed must be an integer >= 0, got {seed!r}")
-    job = {"method": method, "detector": detector, "seed": seed, "config": sections,
-           "params": dict(params), "render": bool(render)}
+    if config is not None and not os.path.isfile(config):
+        raise UsageError(f"config file '{os.fspath(config)}' does not exist")
+    try:
+        sections = pipeline_params(method, detector=detector, config=config, settings=settings,
+                                   **params)
+    except OSError as err:  # an unreadable or unparsable config file
+        raise UsageError(str(err)) from None
+    defaults = pipeline_params(method, detector=detector)
+    background = sections.get("background")
+    if background is not None and background.get("threads") == defaults["background"]["threads"] == 0:
+        background["threads"] = 1
+    job = {"method": method, "detector": detector, "parameters": sections, "render": bool(render)}
     return json.loads(json.dumps(job))  # as it will read back from run.json
 
 
-def check_job(job: Dict[str, Any]) -> None:
-    """Run `job` on a tiny blank clip, so that a bad parameter is reported once, before any
-    input is tracked (TypeError / ValueError naming it, as vtrack.track_video raises them)."""
-    with tempfile.TemporaryDirectory(prefix="vtrack-check-") as folder:
-        header = b"P6\n128 160\n255\n"
-        for k in range(2):
-            with open(os.path.join(folder, f"{k:02d}.ppm"), "wb") as f:
-                f.write(header + bytes(128 * 160 * 3))
-        _track_one(folder, job, None)
+def _seed(job: Dict[str, Any]) -> Optional[int]:
+    return job["parameters"].get("tracker", {}).get("seed")
 
 
 # ---- one task ------------------------------------------------------------------------------------
@@ -310,7 +259,9 @@ def _remove_leftovers(folder: Path) -> None:
     """Temporary files of an earlier attempt on this input (killed, or interrupted)."""
     if folder.is_dir():
         for entry in folder.iterdir():
-            if is_temporary(entry.name) or entry.name.startswith(".render."):
+            # atomic_open's, the C++ writers' (NAME.partial) and this batch's renders.
+            if (is_temporary(entry.name) or entry.name.endswith(".partial")
+                    or entry.name.startswith(".render.")):
                 entry.unlink(missing_ok=True)
 
 
@@ -318,7 +269,7 @@ def _metrics(tracks: np.ndarray, gt_path: Optional[str]) -> Tuple[Optional[dict]
     if gt_path is None:
         return None, None
     from .evaluate import evaluate  # noqa: PLC0415
-    from .mot import read_mot  # noqa: PLC0415
+    from .io import read_mot  # noqa: PLC0415
 
     try:
         found = evaluate(read_mot(gt_path), tracks)
@@ -341,7 +292,7 @@ def run_input(path: str, folder: str, job: Dict[str, Any], gt_path: Optional[str
     input. Returns the outcome that the client writes to run.json."""
     import vtrack  # noqa: PLC0415
 
-    from .mot import write_mot  # noqa: PLC0415
+    from .io import write_mot  # noqa: PLC0415 - the C++ writer (atomic: .partial, renamed)
 
     out = Path(folder)
     out.mkdir(parents=True, exist_ok=True)
@@ -411,7 +362,7 @@ def _record(item: Input, job: Dict[str, Any], outcome: dict, gt_path: Optional[s
     frames, seconds = outcome.get("frames"), outcome.get("seconds")
     fps = frames / seconds if frames and seconds else None
     return {"input": item.path, "name": item.name, "status": outcome["status"],
-            "error": outcome.get("error"), "parameters": job, "seed": job["seed"],
+            "error": outcome.get("error"), "parameters": job, "seed": _seed(job),
             "config_file": config_path, "frames": frames, "seconds": seconds, "fps": fps,
             "outputs": {"tracks": TRACKS if outcome["status"] == "ok" else None,
                         "render": RENDER if job["render"] and outcome["status"] == "ok" else None},
@@ -566,21 +517,25 @@ def _describe_task_error(err: BaseException) -> str:
 
 def track_many(inputs, out_dir: PathLike, client=None, *, method: str = "mb",
                detector: Optional[str] = None, config: Optional[PathLike] = None,
-               seed: Optional[int] = None, render: bool = False, gt: Optional[str] = None,
+               settings: Sequence[str] = (), render: bool = False, gt: Optional[str] = None,
                force: bool = False, workers: Optional[int] = None,
                scheduler: Optional[str] = None, progress: bool = False, **params) -> List[dict]:
     """Track every input (see :func:`expand_inputs`) into ``out_dir/<name>/`` on Dask.
 
     `client` is a ``dask.distributed.Client`` to use; without one, a local cluster of `workers`
     single-threaded processes (default: one per core) is started and stopped, or `scheduler`
-    (``tcp://host:8786``) is connected to. Other keyword arguments are tracking parameters, the
-    names ``vtrack track --set`` takes. Returns each input's run.json record, in input order
+    (``tcp://host:8786``) is connected to. `method`, `detector`, `config` and the other keyword
+    arguments (tracking parameters by name, ``seed`` included) are :func:`vtrack.track_video`'s;
+    `settings` are ``"name=value"`` texts as ``vtrack track --set`` takes them (they override
+    the keywords). Returns each input's run.json record, in input order
     (``skipped`` True for inputs found complete). Raises :class:`UsageError` (a ValueError) or
     the TypeError / ValueError of a bad parameter before anything runs; KeyboardInterrupt after
     cleaning up.
     """
     items = expand_inputs(inputs)
-    job = make_job(method, detector, config, seed, render, **params)
+    out = Path(os.path.abspath(out_dir))  # the workers may run elsewhere, from another folder
+    _check_out_dir(out, items)
+    job = make_job(method, detector, config, settings, render, **params)
     if gt is not None:
         from .evaluate import _trackeval  # noqa: PLC0415
 
@@ -589,14 +544,25 @@ def track_many(inputs, out_dir: PathLike, client=None, *, method: str = "mb",
         except ImportError as err:
             raise UsageError(f"--gt: {err}") from None
     gt_paths = [_gt_path(gt, item) for item in items]
-    check_job(job)
-    out = Path(os.path.abspath(out_dir))  # the workers may run elsewhere, from another folder
     out.mkdir(parents=True, exist_ok=True)
     config_path = os.path.abspath(config) if config is not None else None
 
     with _Interrupts() as interrupts:
         return _run(items, job, out, gt_paths, config_path, client, force, workers, scheduler,
                     progress, gt is not None, interrupts)
+
+
+def _check_out_dir(out: Path, items: Sequence[Input]) -> None:
+    """UsageError when the output folder is not a folder, is an input, lies inside an input
+    (an image folder would gain files) or holds an input (DIR/<name>/ could overwrite it)."""
+    if out.exists() and not out.is_dir():
+        raise UsageError(f"--out '{out}' exists and is not a folder")
+    real_out = Path(os.path.realpath(out))
+    for item in items:
+        real = Path(os.path.realpath(item.path))
+        if real_out == real or real in real_out.parents or real_out in real.parents:
+            raise UsageError(f"--out '{out}' overlaps the input '{item.path}': the outputs "
+                             "must go to a folder of their own, outside the inputs")
 
 
 def _run(items, job, out: Path, gt_paths, config_path, client, force, workers, scheduler,
@@ -673,7 +639,7 @@ class _Batch:
                 continue
             gt_path = self.gt_paths[i]
             if gt_path is not None and run.get("gt") != gt_path:  # metrics asked for later
-                from .mot import read_mot  # noqa: PLC0415
+                from .io import read_mot  # noqa: PLC0415
 
                 run["metrics"], run["error"] = _metrics(read_mot(folder / TRACKS), gt_path)
                 run["gt"] = gt_path
@@ -813,11 +779,12 @@ def _parser() -> argparse.ArgumentParser:
                         "file listing them, one per line")
     p.add_argument("--out", required=True, metavar="DIR", help="output folder")
     p.add_argument("--method", default="mb", choices=METHODS, help="tracker (default mb)")
-    p.add_argument("--detector", choices=DETECTORS, help="detector of the box trackers")
+    p.add_argument("--detector", help="what gives glmb its boxes: hog (needed by glmb)")
     p.add_argument("--config", metavar="FILE", help="parameters, YAML or JSON (as vtrack track)")
     p.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                    help="one parameter, overriding the config file (repeatable)")
-    p.add_argument("--seed", type=int, help="random seed (default: the config's, else 0)")
+    p.add_argument("--seed", help="the tracker's seed, 0 to 2^64-1 (default: the config's, "
+                                  "else 0)")
     p.add_argument("--render", action="store_true", help="also write DIR/<name>/render.mp4")
     p.add_argument("--gt", metavar="PATTERN",
                    help="ground truth per input, e.g. 'MOT15/train/{name}/gt/gt.txt' "
@@ -847,11 +814,12 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     if args.workers is not None and args.workers < 1:
         return fail(f"--workers must be >= 1, got {args.workers}", EXIT_USAGE)
     try:
-        params = dict(parse_setting(s) for s in args.set)
+        # --seed as a setting read by the C++ parser, before the --set ones (vtrack track's order)
+        settings = ([f"seed={args.seed}"] if args.seed is not None else []) + args.set
         runs = track_many(args.inputs, args.out, method=args.method, detector=args.detector,
-                          config=args.config, seed=args.seed, render=args.render, gt=args.gt,
+                          config=args.config, settings=settings, render=args.render, gt=args.gt,
                           force=args.force, workers=args.workers, scheduler=args.scheduler,
-                          progress=not args.quiet, **params)
+                          progress=not args.quiet)
     except KeyboardInterrupt:
         done = sum(1 for _ in _finished(args.out))
         return fail(f"interrupted; {args.out} holds {done} complete input(s): run the same "

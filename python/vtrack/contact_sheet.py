@@ -12,7 +12,7 @@ from typing import Optional, Sequence
 
 import numpy as np
 
-from .mot import read_mot
+from .io import read_mot
 
 
 def _colour(label: int) -> tuple:

@@ -3,7 +3,7 @@
     python -m vtrack.evaluate --gt gt.txt --tracks tracks.txt
 
 prints MOTA, MOTP, IDF1, HOTA (with DetA, AssA), ID switches, FP, FN and the counts. Both files
-are MOTChallenge text (see :mod:`vtrack.mot`). Following the MOT15 convention, ground-truth rows
+are MOTChallenge text (see :mod:`vtrack.io`). Following the MOT15 convention, ground-truth rows
 with confidence 0 are ignored. Matching is by box IoU with the standard thresholds (0.5 for
 CLEAR-MOT and IDF1; HOTA averages over IoU 0.05 ... 0.95).
 
@@ -23,7 +23,7 @@ from typing import Dict, Optional, Sequence
 
 import numpy as np
 
-from .mot import read_mot
+from .io import read_mot
 
 METRICS = ("MOTA", "MOTP", "IDF1", "HOTA", "DetA", "AssA", "IDSW", "FP", "FN", "GT", "Tracks",
            "GT_IDs", "Track_IDs")
@@ -85,7 +85,7 @@ def _sequence_data(gt: np.ndarray, tracks: np.ndarray) -> dict:
 
 
 def evaluate(gt: np.ndarray, tracks: np.ndarray) -> Dict[str, float]:
-    """Metrics of `tracks` against `gt`, both MOT arrays (N, >= 7) as :func:`vtrack.mot.read_mot`
+    """Metrics of `tracks` against `gt`, both MOT arrays (N, >= 7) as :func:`vtrack.io.read_mot`
     returns. GT rows with confidence 0 are dropped (MOT15)."""
     gt = _table(gt, "gt")
     tracks = _table(tracks, "tracks")

@@ -17,7 +17,7 @@ def rgi_float64(frame: np.ndarray) -> np.ndarray:
     """rgI of an H x W x 3 uint8 BGR frame (mb-tbd paper eqs. 6-8), float64 H x W x 3.
 
     r = R / S, g = G / S, I = S / 765 with S = R + G + B; black pixels get r = g = 1/3
-    (the conventions of vtrack.bgr_to_rgi).
+    (the conventions of vtrack.image.bgr_to_rgi).
     """
     bgr = frame.astype(np.float64)
     s = bgr.sum(axis=2)

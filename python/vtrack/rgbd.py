@@ -141,8 +141,8 @@ class RgbdScene:
 
     def depth_model(self, **params) -> DepthLikelihood:
         """The DepthLikelihood of this scene's camera; keywords override its parameters."""
-        return DepthLikelihood(self.width, self.height, self.fx, **{"person_size": PERSON_SIZE,
-                                                                     **params})
+        return DepthLikelihood(self.width, self.height, self.fx, **{
+            "person_width": PERSON_SIZE[0], "person_height": PERSON_SIZE[1], **params})
 
     def tracker(self, density: str = "particle", switching: bool = True, particles: int = 300,
                 seed: int = 0, depth_params: Optional[Dict] = None, **params) -> GlmbTracker:
@@ -156,7 +156,7 @@ class RgbdScene:
                       adaptive_birth_cov=np.diag([0.1, 0.5, 0.1, 0.1, 0.2, 0.5]) ** 2,
                       adaptive_birth_rate=0.01, adaptive_birth_max_existence=0.01)
         if density == "particle":
-            kwargs.update(particles=particles, seed=seed)
+            kwargs.update(densities="particles", n_particles=particles, seed=seed)
             if switching:
                 kwargs["depth_model"] = self.depth_model(**(depth_params or {}))
         elif density != "gaussian" or switching:
@@ -167,6 +167,14 @@ class RgbdScene:
         observation = LinearGaussianObservation.position(
             axes=3, R=np.diag(np.square(self.detection_sigma)))
         return GlmbTracker(motion, observation, [], **kwargs)
+
+
+def positions(tracks) -> List[Tuple[int, np.ndarray]]:
+    """[(id, (X, Y, D)), ...] of a GlmbTracker step's Tracks (state [X, vX, Y, vY, D, vD]): the
+    per-frame estimates identity_events, burst_outcomes and clear_mot take."""
+    if len(tracks) == 0:
+        return []
+    return [(int(i), s[[0, 2, 4]].copy()) for i, s in zip(tracks.ids, tracks.states)]
 
 
 def make_rgbd_scene(seed: int = 0, frames: int = 300, people: int = 4,

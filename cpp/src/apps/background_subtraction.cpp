@@ -72,7 +72,7 @@ class VideoFileWriter : public YWriter {
 
 BgsResult run_background_subtraction(const std::string& input, const std::string& output,
                                      const image::KdeBackgroundParams& params,
-                                     const Progress& progress) {
+                                     const FrameProgress& progress) {
   image::KdeBackground model(params);  // validates params before any file is touched
   VideoSource source(input);
   BgsResult result;

@@ -10,6 +10,20 @@
 
 namespace vtrack::apps {
 
+const core::ParameterTable<HogParams>& HogParams::table() {
+  using P = HogParams;
+  static const auto table = core::ParameterTable<P>()
+                                .add("hit_threshold", &P::hit_threshold)
+                                .add("win_stride", &P::win_stride)
+                                .add("padding", &P::padding)
+                                .add("scale", &P::scale)
+                                .add("upscale", &P::upscale)
+                                .add("group_threshold", &P::group_threshold)
+                                .add("min_score", &P::min_score)
+                                .add("person_fraction", &P::person_fraction);
+  return table;
+}
+
 void validate(const HogParams& p) {
   if (!std::isfinite(p.hit_threshold)) {
     throw InvalidArgument("hit_threshold must be finite, got " + std::to_string(p.hit_threshold));

@@ -5,9 +5,6 @@
 #include <limits>
 #include <memory>
 
-#include "vtrack/apps/parameters.hpp"
-#include "vtrack/apps/video_source.hpp"
-#include "vtrack/apps/video_writer.hpp"
 #include "vtrack/core/errors.hpp"
 
 namespace vtrack::apps {
@@ -24,6 +21,34 @@ Eigen::MatrixXd observations(const std::vector<Detection>& detections) {
 }
 
 }  // namespace
+
+const core::ParameterTable<BoxTrackerParams>& BoxTrackerParams::table() {
+  using P = BoxTrackerParams;
+  static const auto table = core::ParameterTable<P>()
+                                .add("detection_probability", &P::detection_probability)
+                                .add("survival_probability", &P::survival_probability)
+                                .add("outside_survival_probability", &P::outside_survival_probability)
+                                .add("outside_detection_probability", &P::outside_detection_probability)
+                                .add("clutter_rate", &P::clutter_rate)
+                                .add("sigma_accel", &P::sigma_accel)
+                                .add("sigma_size", &P::sigma_size)
+                                .add("detection_sd_centre", &P::detection_sd_centre)
+                                .add("detection_sd_size", &P::detection_sd_size)
+                                .add("birth_sd_centre", &P::birth_sd_centre)
+                                .add("birth_sd_velocity", &P::birth_sd_velocity)
+                                .add("birth_sd_size", &P::birth_sd_size)
+                                .add("birth_rate", &P::birth_rate)
+                                .add("birth_max_existence", &P::birth_max_existence)
+                                .add("hypothesis_budget", &P::hypothesis_budget)
+                                .add("gate_threshold", &P::gate_threshold)
+                                .add("min_confidence", &P::min_confidence)
+                                .include(&P::management)
+                                .add_choice("ranking", &P::ranking,
+                                            {{"murty", filters::HypothesisRanking::murty},
+                                             {"gibbs", filters::HypothesisRanking::gibbs}})
+                                .add("seed", &P::seed);
+  return table;
+}
 
 void validate(const BoxTrackerParams& p) {
   require(p.detection_probability > 0 && p.detection_probability < 1, "detection_probability",
@@ -43,8 +68,7 @@ void validate(const BoxTrackerParams& p) {
   for (const auto& [name, v] : positive) require(v > 0 && std::isfinite(v), name, v, "> 0 and finite");
   require(p.birth_max_existence > 0 && p.birth_max_existence < 1, "birth_max_existence",
           p.birth_max_existence, "in (0, 1)");
-  require(p.min_age >= 1, "min_age", p.min_age, ">= 1");
-  require(p.seed >= 0, "seed", p.seed, ">= 0");
+  validate(p.management);
   require(p.hypothesis_budget > 0, "hypothesis_budget", p.hypothesis_budget, "> 0");
   require(p.gate_threshold > 0, "gate_threshold", p.gate_threshold, "> 0 (or inf for no gating)");
   require(!std::isnan(p.min_confidence), "min_confidence", p.min_confidence, "a number");
@@ -68,10 +92,10 @@ models::LinearGaussianObservation box_observation(const BoxTrackerParams& p) {
   return o;
 }
 
-filters::GlmbParams box_glmb_params(const BoxTrackerParams& p, double width, double height) {
+filters::GlmbParams box_glmb_params(const BoxTrackerParams& p, int width, int height) {
   validate(p);
-  require(width > 0 && std::isfinite(width), "image width", width, "> 0");
-  require(height > 0 && std::isfinite(height), "image height", height, "> 0");
+  require(width > 0, "image width", width, "> 0");
+  require(height > 0, "image height", height, "> 0");
   filters::GlmbParams g;
   g.survival_probability = p.survival_probability;
   g.detection_probability = p.detection_probability;
@@ -86,13 +110,13 @@ filters::GlmbParams box_glmb_params(const BoxTrackerParams& p, double width, dou
   g.field_of_view.outside_survival_probability = p.outside_survival_probability;
   g.field_of_view.outside_detection_probability = p.outside_detection_probability;
   // Uniform clutter over centre (W x H) and size ([0, W] x [0, H]): volume (W H)^2.
-  g.clutter_intensity = p.clutter_rate / ((width * height) * (width * height));
+  const double area = static_cast<double>(width) * height;
+  g.clutter_intensity = p.clutter_rate / (area * area);
   g.hypothesis_budget = p.hypothesis_budget;
   g.max_hypotheses = p.hypothesis_budget;
   g.gate_threshold = p.gate_threshold;
-  g.ranking = p.gibbs_ranking ? filters::HypothesisRanking::gibbs
-                              : filters::HypothesisRanking::murty;
-  g.seed = static_cast<std::uint64_t>(p.seed);
+  g.ranking = p.ranking;
+  g.seed = p.seed;
   g.adaptive_birth.enabled = true;
   g.adaptive_birth.expected_births = p.birth_rate;
   g.adaptive_birth.max_existence = p.birth_max_existence;
@@ -103,41 +127,46 @@ filters::GlmbParams box_glmb_params(const BoxTrackerParams& p, double width, dou
   return g;
 }
 
-BoxTracker::BoxTracker(double width, double height, const BoxTrackerParams& params)
-    : params_(params),
-      filter_(box_motion(params), box_observation(params), {},
-              box_glmb_params(params, width, height)) {}
+namespace {
 
-std::vector<BoxTrack> BoxTracker::step(const std::vector<Detection>& detections) {
+filters::GlmbTrackerParams box_tracker_params(const BoxTrackerParams& p, int width, int height) {
+  filters::GlmbTrackerParams t;
+  t.glmb = box_glmb_params(p, width, height);
+  t.management = p.management;
+  return t;
+}
+
+}  // namespace
+
+BoxTracker::BoxTracker(int width, int height, const BoxTrackerParams& params)
+    : params_(params),
+      width_(width),
+      height_(height),
+      tracker_(box_motion(params), box_observation(params), {},
+               box_tracker_params(params, width, height), std::nullopt, filters::BoxLayout{}) {}
+
+const filters::Tracks& BoxTracker::step(const std::vector<Detection>& detections) {
   std::vector<Detection> kept;
   kept.reserve(detections.size());
   for (const auto& d : detections) {
     if (d.confidence >= params_.min_confidence) kept.push_back(d);
   }
-  filter_.step(observations(kept));
-  std::vector<BoxTrack> out;
-  for (const auto& e : filter_.estimates()) {
-    if (filter_.time() - e.label.birth_time + 1 < params_.min_age) continue;  // not confirmed yet
-    const auto key = std::make_pair(e.label.birth_time, e.label.birth_index);
-    const auto it = ids_.emplace(key, ids_.size() + 1).first;
-    const double w = e.mean(4), h = e.mean(5);
-    out.push_back({it->second, e.mean(0) - w / 2, e.mean(2) - h / 2, w, h});
-  }
-  return out;
+  return tracker_.step(observations(kept));
 }
 
-std::pair<double, double> detections_extent(const std::vector<Detection>& detections) {
+std::pair<int, int> detections_extent(const std::vector<Detection>& detections) {
   double width = 1, height = 1;
   for (const auto& d : detections) {
     width = std::max(width, d.x + d.w);
     height = std::max(height, d.y + d.h);
   }
-  return {width, height};
+  return {static_cast<int>(std::ceil(width)), static_cast<int>(std::ceil(height))};
 }
 
-std::vector<TrackRow> track_detections(const std::vector<Detection>& detections, double width,
-                                       double height, const BoxTrackerParams& params,
+std::vector<TrackRow> track_detections(const std::vector<Detection>& detections, int width,
+                                       int height, const BoxTrackerParams& params,
                                        long long last_frame, const FrameProgress& progress) {
+  if (width == 0 || height == 0) std::tie(width, height) = detections_extent(detections);
   BoxTracker tracker(width, height, params);  // validates the parameters and the image size
   if (last_frame < 0) throw InvalidArgument("last_frame must be >= 0, got " + std::to_string(last_frame));
   long long last = last_frame;
@@ -156,61 +185,10 @@ std::vector<TrackRow> track_detections(const std::vector<Detection>& detections,
   for (long long frame = 1; frame <= last; ++frame) {
     frame_detections.clear();
     for (; next != sorted.end() && next->frame == frame; ++next) frame_detections.push_back(*next);
-    for (const auto& t : tracker.step(frame_detections)) {
-      rows.push_back({frame, t.id, static_cast<float>(t.x), static_cast<float>(t.y),
-                      static_cast<float>(t.w), static_cast<float>(t.h), 1.0});
-    }
+    append_rows(rows, frame, tracker.step(frame_detections));
     if (progress) progress(frame, last);
   }
   return rows;
-}
-
-void load_pipeline_config(const std::string& path, GlmbPipelineParams& params) {
-  const ConfigFile config = read_config_file(path, {"detector", "tracker"}, false);
-  apply_config_section(config, "detector", params.detector);
-  apply_config_section(config, "tracker", params.tracker);
-  validate(params.detector);
-  validate(params.tracker);
-}
-
-GlmbVideoResult track_video_glmb(const std::string& input, const HogParams& detector_params,
-                                 const BoxTrackerParams& tracker_params, const std::string& render,
-                                 const FrameProgress& progress) {
-  HogPeopleDetector detector(detector_params);  // validates before any file is touched
-  validate(tracker_params);
-  if (!render.empty() && !is_video_output(render)) {
-    throw InvalidArgument("render must be a .avi, .mp4 or .mkv file, got '" + render + "'");
-  }
-  VideoSource source(input);
-  BoxTracker tracker(source.width(), source.height(), tracker_params);
-  std::unique_ptr<AtomicVideoWriter> video;
-  if (!render.empty()) {
-    video = std::make_unique<AtomicVideoWriter>(render, source.fps() > 0 ? source.fps() : 25.0,
-                                                cv::Size(source.width(), source.height()));
-  }
-  GlmbVideoResult result;
-  std::vector<Detection> frame_detections;
-  cv::Mat frame;
-  while (source.read(frame)) {
-    const long long frame_number = source.frames_read();  // 1-based, as MOTChallenge counts
-    frame_detections.clear();
-    for (const auto& b : detector.detect(frame)) {
-      frame_detections.push_back({frame_number, b.x, b.y, b.w, b.h, b.score});
-    }
-    result.detections.insert(result.detections.end(), frame_detections.begin(),
-                             frame_detections.end());
-    const auto tracks = tracker.step(frame_detections);
-    for (const auto& t : tracks) {
-      result.tracks.push_back({frame_number, t.id, static_cast<float>(t.x),
-                               static_cast<float>(t.y), static_cast<float>(t.w),
-                               static_cast<float>(t.h), 1.0});
-      if (video) draw_labelled_box(frame, t.id, t.x, t.y, t.w, t.h);
-    }
-    if (video) video->write(frame);
-    if (progress) progress(source.frames_read(), source.expected_frame_count());
-  }
-  if (video) video->commit();
-  return result;
 }
 
 }  // namespace vtrack::apps

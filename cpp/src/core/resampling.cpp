@@ -89,21 +89,26 @@ void systematic(const Eigen::Ref<const Eigen::VectorXd>& weights, double total, 
 
 }  // namespace
 
+const std::vector<std::pair<std::string, ResamplingScheme>>& resampling_scheme_names() {
+  static const std::vector<std::pair<std::string, ResamplingScheme>> names = {
+      {"multinomial", ResamplingScheme::Multinomial},
+      {"stratified", ResamplingScheme::Stratified},
+      {"systematic", ResamplingScheme::Systematic},
+      {"residual", ResamplingScheme::Residual}};
+  return names;
+}
+
 ResamplingScheme parse_resampling_scheme(const std::string& name) {
-  if (name == "multinomial") return ResamplingScheme::Multinomial;
-  if (name == "stratified") return ResamplingScheme::Stratified;
-  if (name == "systematic") return ResamplingScheme::Systematic;
-  if (name == "residual") return ResamplingScheme::Residual;
+  for (const auto& [text, scheme] : resampling_scheme_names()) {
+    if (text == name) return scheme;
+  }
   throw InvalidArgument("unknown resampling scheme '" + name +
                         "' (expected multinomial, stratified, systematic or residual)");
 }
 
 const char* to_string(ResamplingScheme scheme) {
-  switch (scheme) {
-    case ResamplingScheme::Multinomial: return "multinomial";
-    case ResamplingScheme::Stratified: return "stratified";
-    case ResamplingScheme::Systematic: return "systematic";
-    case ResamplingScheme::Residual: return "residual";
+  for (const auto& [text, value] : resampling_scheme_names()) {
+    if (value == scheme) return text.c_str();
   }
   return "unknown";
 }

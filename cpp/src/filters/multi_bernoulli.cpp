@@ -29,6 +29,51 @@ void sort_by_label(std::vector<T>& v) {
 
 }  // namespace
 
+const core::ParameterTable<MultiBernoulliParams>& MultiBernoulliParams::table() {
+  using P = MultiBernoulliParams;
+  static const auto table =
+      core::ParameterTable<P>()
+          .include(&P::likelihood)
+          .add("survival_probability", &P::survival_probability)
+          .add("sigma_x", &P::sigma_x)
+          .add("sigma_y", &P::sigma_y)
+          .add("sigma_w", &P::sigma_w)
+          .add("sigma_h", &P::sigma_h)
+          .add("width_mean", &P::width_mean)
+          .add("width_std", &P::width_std)
+          .add("height_mean", &P::height_mean)
+          .add("height_std", &P::height_std)
+          .add("width_min", &P::width_min)
+          .add("width_max", &P::width_max)
+          .add("height_min", &P::height_min)
+          .add("height_max", &P::height_max)
+          .add("quarter_birth", &P::quarter_birth)
+          .add("birth_probability", &P::birth_probability)
+          .add("birth_particles", &P::birth_particles)
+          .add("cover_existence", &P::cover_existence)
+          .add("established_age", &P::established_age)
+          .add("adaptive_birth", &P::adaptive_birth)
+          .add("adaptive_birth_probability", &P::adaptive_birth_probability)
+          .add("adaptive_birth_log_likelihood", &P::adaptive_birth_log_likelihood)
+          .add("adaptive_birth_stride", &P::adaptive_birth_stride)
+          .add("adaptive_birth_max", &P::adaptive_birth_max)
+          .add("min_particles", &P::min_particles)
+          .add("max_particles", &P::max_particles)
+          .add_choice("resampling", &P::resampling, core::resampling_scheme_names())
+          .add("prune_threshold", &P::prune_threshold)
+          .add("merge_overlap", &P::merge_overlap)
+          .add("estimate_threshold", &P::estimate_threshold)
+          .add("max_existence", &P::max_existence)
+          .include(&P::management)
+          .add("velocity_smoothing", &P::velocity_smoothing)
+          .add("box_scale_w", &P::box_scale_w)
+          .add("box_scale_h", &P::box_scale_h)
+          .add("box_offset_x", &P::box_offset_x)
+          .add("box_offset_y", &P::box_offset_y)
+          .add("seed", &P::seed);
+  return table;
+}
+
 void validate(const MultiBernoulliParams& p) {
   models::validate(p.likelihood);
   require(p.survival_probability > 0.0 && p.survival_probability <= 1.0, "survival_probability",
@@ -71,10 +116,7 @@ void validate(const MultiBernoulliParams& p) {
           p.estimate_threshold, "in [0, 1)");
   require(p.max_existence > 0.0 && p.max_existence <= 1.0, "max_existence", p.max_existence,
           "in (0, 1]");
-  require(p.confirm_frames >= 1, "confirm_frames", p.confirm_frames, ">= 1");
-  require(p.lost_memory >= 0, "lost_memory", p.lost_memory, ">= 0");
-  require(p.relabel_overlap > 0.0 && p.relabel_overlap <= 1.0, "relabel_overlap",
-          p.relabel_overlap, "in (0, 1]");
+  validate(p.management);
   require_probability("velocity_smoothing", p.velocity_smoothing);
   require_positive("box_scale_w", p.box_scale_w);
   require_positive("box_scale_h", p.box_scale_h);
@@ -95,15 +137,6 @@ double box_overlap(const Eigen::Vector4f& a, const Eigen::Vector4f& b) {
   return smaller > 0.0 ? iw * ih / smaller : 0.0;
 }
 
-double box_iou(const Eigen::Vector4f& a, const Eigen::Vector4f& b) {
-  const double iw = std::min(a[0] + a[2], b[0] + b[2]) - std::max(a[0], b[0]);
-  const double ih = std::min(a[1] + a[3], b[1] + b[3]) - std::max(a[1], b[1]);
-  if (iw <= 0.0 || ih <= 0.0) return 0.0;
-  const double inter = iw * ih;
-  const double uni = static_cast<double>(a[2]) * a[3] + static_cast<double>(b[2]) * b[3] - inter;
-  return uni > 0.0 ? inter / uni : 0.0;
-}
-
 double updated_existence(double r, double log_rho) {
   // Eq. (23): r rho / (1 - r + r rho) = 1 / (1 + exp(-(logit r + log rho))).
   if (r <= 0.0) return 0.0;
@@ -113,14 +146,15 @@ double updated_existence(double r, double log_rho) {
 }
 
 MultiBernoulliFilter::MultiBernoulliFilter(int width, int height,
-                                           const MultiBernoulliParams& params, std::uint64_t seed)
-    : params_(params), width_(width), height_(height), rng_(seed), likelihood_(params.likelihood) {
+                                           const MultiBernoulliParams& params)
+    : params_(params), width_(width), height_(height), rng_(params.seed),
+      likelihood_(params.likelihood), management_(params.management) {
   if (width < 1) throw InvalidArgument("width must be >= 1, got " + std::to_string(width));
   if (height < 1) throw InvalidArgument("height must be >= 1, got " + std::to_string(height));
   validate(params_);
 }
 
-std::vector<Track> MultiBernoulliFilter::step(const cv::Mat& y) {
+const Tracks& MultiBernoulliFilter::step(const cv::Mat& y) {
   if (y.cols != width_ || y.rows != height_) {
     throw InvalidArgument("y must be " + std::to_string(height_) + " x " + std::to_string(width_) +
                           " (height x width), got " + std::to_string(y.rows) + " x " +
@@ -150,19 +184,11 @@ std::vector<Track> MultiBernoulliFilter::step(const cv::Mat& y) {
   return tracks_;
 }
 
-void MultiBernoulliFilter::remember_lost(const BernoulliComponent& c) {
-  if (params_.lost_memory == 0 || !c.confirmed || c.last_reported < 0) return;
-  lost_.push_back({c.label, c.last_box, c.velocity, c.last_reported});
-}
-
 void MultiBernoulliFilter::manage_tracks() {
-  // Beyond the paper (see MultiBernoulliParams): confirmation, relabelling from the lost memory,
-  // velocity estimates and the reported box transform. Section 4's estimate is the weighted mean
-  // of a component with r > estimate_threshold.
-  const int memory = params_.lost_memory;
-  lost_.erase(std::remove_if(lost_.begin(), lost_.end(),
-                             [&](const LostTrack& l) { return frame_ - l.frame > memory; }),
-              lost_.end());
+  // Beyond the paper (see MultiBernoulliParams): velocity estimates, confirmation, relabelling
+  // from the lost memory, and the reported box transform. Section 4's estimate is the weighted
+  // mean of a component with r > estimate_threshold.
+  management_.begin_step(frame_);
   const float alpha = float(params_.velocity_smoothing);
   bool relabelled = false;
   tracks_.clear();
@@ -171,48 +197,36 @@ void MultiBernoulliFilter::manage_tracks() {
     if (c.birth_frame < frame_) {  // not born this step: it has a previous estimate
       const Eigen::Vector2f shift = (m.head<2>() + 0.5f * m.tail<2>()) -
                                     (c.last_mean.head<2>() + 0.5f * c.last_mean.tail<2>());
-      c.velocity = (1.0f - alpha) * c.velocity + alpha * shift;
+      c.record.velocity = (1.0f - alpha) * c.record.velocity + alpha * shift;
     }
     c.last_mean = m;
     if (c.existence <= params_.estimate_threshold) continue;
-    ++c.hits;
-    if (!c.confirmed && !lost_.empty()) {
-      // The lost track whose box, moved on at its velocity, overlaps this estimate most.
-      double best = params_.relabel_overlap;
-      auto found = lost_.end();
-      for (auto it = lost_.begin(); it != lost_.end(); ++it) {
-        Eigen::Vector4f predicted = it->box;
-        predicted.head<2>() += float(frame_ - it->frame) * it->velocity;
-        const double iou = box_iou(predicted, m);
-        if (iou >= best) {
-          best = iou;
-          found = it;
-        }
-      }
-      if (found != lost_.end()) {
-        c.label = found->label;
-        c.velocity = found->velocity;
-        c.confirmed = true;
-        relabelled = true;
-        lost_.erase(found);
-      }
+    if (const auto lost_label = management_.observe(c.label, c.record, m)) {
+      c.label = *lost_label;
+      relabelled = true;
     }
-    if (c.hits >= params_.confirm_frames) c.confirmed = true;
-    if (!c.confirmed) continue;
-    c.last_box = m;
-    c.last_reported = frame_;
+    if (!management_.report(c.record, m)) continue;
     // Reported box: scaled about the centre, centre shifted (box_scale_*, box_offset_*).
     const float w = m[2] * float(params_.box_scale_w);
     const float h = m[3] * float(params_.box_scale_h);
     const float cx = m[0] + 0.5f * m[2] + float(params_.box_offset_x) * m[2];
     const float cy = m[1] + 0.5f * m[3] + float(params_.box_offset_y) * m[3];
-    tracks_.push_back({c.label, cx - 0.5f * w, cy - 0.5f * h, w, h, c.existence});
+    TrackEstimate t;
+    t.id = c.label;
+    t.x = cx - 0.5f * w;
+    t.y = cy - 0.5f * h;
+    t.w = w;
+    t.h = h;
+    t.score = c.existence;
+    t.state = m.cast<double>();
+    tracks_.push_back(std::move(t));
   }
   if (relabelled) {
     // A component that took an old label back is older than its birth suggests: keep
     // components_ (and the tracks) in label order, which merging and explaining-away rely on.
     sort_by_label(components_);
-    sort_by_label(tracks_);
+    std::sort(tracks_.begin(), tracks_.end(),
+              [](const TrackEstimate& a, const TrackEstimate& b) { return a.id < b.id; });
   }
 }
 
@@ -233,8 +247,8 @@ void MultiBernoulliFilter::predict() {
     const Eigen::Map<const BoxStates> e(noise_.data(), 4, c.particles.cols());
     c.particles += (e.array().colwise() * sigma).matrix();
     // Beyond the paper: the drift v of MultiBernoulliParams::velocity_smoothing (zero when off).
-    c.particles.row(0).array() += c.velocity[0];
-    c.particles.row(1).array() += c.velocity[1];
+    c.particles.row(0).array() += c.record.velocity[0];
+    c.particles.row(1).array() += c.record.velocity[1];
     clamp_sizes(c.particles);
   }
 }
@@ -367,17 +381,13 @@ void merge_overlapping(std::vector<BernoulliComponent>& components, double min_o
       auto& a = components[i];
       auto& b = components[j];
       // Beyond the paper: a confirmed track is not renamed by an unconfirmed one it absorbs
-      // (MultiBernoulliParams::confirm_frames); when only b is confirmed its label and track state
+      // (MultiBernoulliParams::management); when only b is confirmed its label and track state
       // carry on. Otherwise the older label survives (Section 4 does not say; the issue asks).
-      if (b.confirmed && !a.confirmed) {
+      if (b.record.confirmed && !a.record.confirmed) {
         std::swap(a.label, b.label);
         std::swap(a.birth_frame, b.birth_frame);
-        std::swap(a.hits, b.hits);
-        std::swap(a.confirmed, b.confirmed);
-        std::swap(a.velocity, b.velocity);
+        std::swap(a.record, b.record);
         std::swap(a.last_mean, b.last_mean);
-        std::swap(a.last_box, b.last_box);
-        std::swap(a.last_reported, b.last_reported);
         relabelled = true;
       }
       if (absorbed) absorbed->push_back(b);
@@ -411,16 +421,16 @@ void MultiBernoulliFilter::prune_and_merge() {
   components_.erase(std::remove_if(components_.begin(), components_.end(),
                                    [&](const BernoulliComponent& c) {
                                      if (c.existence >= params_.prune_threshold) return false;
-                                     remember_lost(c);
+                                     management_.end(c.label, c.record);
                                      return true;
                                    }),
                     components_.end());
   // Births are appended with increasing labels, so components_ is in label order.
   std::vector<BernoulliComponent> absorbed;
   merge_overlapping(components_, params_.merge_overlap, params_.max_existence,
-                    params_.lost_memory > 0 ? &absorbed : nullptr);
+                    params_.management.lost_memory > 0 ? &absorbed : nullptr);
   // A confirmed track absorbed by another (two people in one blob) may reappear when they part.
-  for (const auto& c : absorbed) remember_lost(c);
+  for (const auto& c : absorbed) management_.end(c.label, c.record);
 }
 
 void MultiBernoulliFilter::resample() {

@@ -10,6 +10,7 @@
 #include "vtrack/core/errors.hpp"
 #include "vtrack/core/resampling.hpp"
 #include "vtrack/core/weights.hpp"
+#include "vtrack/filters/glmb_impl.hpp"
 
 namespace vtrack::filters {
 namespace {
@@ -28,21 +29,32 @@ Eigen::MatrixXd cholesky_of(const Eigen::MatrixXd& cov, const std::string& what)
 
 }  // namespace
 
-ParticleTracks::ParticleTracks(ParticleParams params, const models::LinearGaussianMotion& motion,
+const core::ParameterTable<ParticleParams>& ParticleParams::table() {
+  using P = ParticleParams;
+  static const auto table =
+      core::ParameterTable<P>()
+          .add("n_particles", &P::n_particles)
+          .add("resample_threshold", &P::resample_threshold)
+          .add("depth_for_births", &P::depth_for_births)
+          .add("mask_detections", &P::mask_detections)
+          .add("occlusion_margin", &P::occlusion_margin)
+          .add("occluded_detection_probability", &P::occluded_detection_probability);
+  return table;
+}
+
+void validate(const ParticleParams& p) {
+  require(p.n_particles >= 2, "n_particles", p.n_particles, ">= 2");
+  require(p.occlusion_margin >= 0.0, "occlusion_margin", p.occlusion_margin, ">= 0 (or inf: off)");
+  require(p.resample_threshold >= 0.0 && p.resample_threshold <= 1.0, "resample_threshold",
+          p.resample_threshold, "in [0, 1]");
+}
+
+ParticleTracks::ParticleTracks(ParticleParams params, std::uint64_t seed,
+                               const models::LinearGaussianMotion& motion,
                                const models::LinearGaussianObservation& observation,
                                std::optional<models::DepthLikelihood> depth_model)
-    : params_(params), depth_model_(std::move(depth_model)), rng_(params.seed) {
-  if (params_.particles < 2) {
-    throw InvalidArgument("particles must be >= 2, got " + std::to_string(params_.particles));
-  }
-  if (!(params_.occlusion_margin >= 0.0)) {
-    throw InvalidArgument("occlusion_margin must be >= 0 (or +inf: off), got " +
-                          std::to_string(params_.occlusion_margin));
-  }
-  if (!(params_.resample_threshold >= 0.0) || params_.resample_threshold > 1.0) {
-    throw InvalidArgument("resample_threshold must lie in [0, 1], got " +
-                          std::to_string(params_.resample_threshold));
-  }
+    : params_(params), depth_model_(std::move(depth_model)), rng_(seed) {
+  validate(params_);
   // Q of eq. (7) is singular (rank 3: noise enters through Gamma), so no Cholesky factor: the
   // symmetric square root from the eigen-decomposition, negative round-off clamped to zero.
   const Eigen::MatrixXd Q = 0.5 * (motion.Q + motion.Q.transpose());
@@ -103,10 +115,10 @@ ParticleDensity ParticleTracks::predict(const Density& prior,
 
 ParticleDensity ParticleTracks::birth(const models::GaussianDensity& density) {
   const Eigen::MatrixXd L = cholesky_of(density.cov, "birth covariance");
-  noise_.resize(density.mean.size(), params_.particles);
+  noise_.resize(density.mean.size(), params_.n_particles);
   rng_.fill_normal(noise_.data(), static_cast<std::size_t>(noise_.size()));
-  Density out{L * noise_, Eigen::VectorXd::Constant(params_.particles,
-                                                     -std::log(static_cast<double>(params_.particles)))};
+  Density out{L * noise_, Eigen::VectorXd::Constant(params_.n_particles,
+                                                     -std::log(static_cast<double>(params_.n_particles)))};
   out.x.colwise() += density.mean;
   return out;
 }
@@ -211,7 +223,8 @@ ParticleGlmbFilter::ParticleGlmbFilter(models::LinearGaussianMotion motion,
                                        std::optional<models::DepthLikelihood> depth_model)
     : GlmbFilter<ParticleTracks>(
           motion, observation, births, params,
-          ParticleTracks(particle_params, motion, observation, std::move(depth_model))) {
+          ParticleTracks(particle_params, params.seed, motion, observation,
+                         std::move(depth_model))) {
   // Birth covariances are sampled through their Cholesky factor: check them now, not mid-step.
   for (std::size_t b = 0; b < births.size(); ++b) {
     cholesky_of(births[b].density.cov, "birth covariance " + std::to_string(b));
@@ -226,5 +239,7 @@ void ParticleGlmbFilter::step(const Eigen::Ref<const Eigen::MatrixXd>& detection
   GlmbFilter<ParticleTracks>::step(detections);
   tracks_model_.set_depth(nullptr, detections);
 }
+
+template class GlmbFilter<ParticleTracks>;
 
 }  // namespace vtrack::filters

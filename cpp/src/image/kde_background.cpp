@@ -16,10 +16,7 @@ namespace {
 std::string size_string(cv::Size s) { return std::to_string(s.width) + "x" + std::to_string(s.height); }
 
 void require_bandwidth(double sigma, const char* name) {
-  if (!std::isfinite(sigma) || sigma <= 0.0) {
-    throw InvalidArgument(std::string("bandwidth ") + name + " must be finite and > 0, got " +
-                          std::to_string(sigma));
-  }
+  require(std::isfinite(sigma) && sigma > 0.0, name, sigma, "finite and > 0");
 }
 
 // exp(-e) for e >= 0, written so that GCC vectorises it: Cephes' expf (range reduction by
@@ -66,6 +63,20 @@ struct Exponents {
 
 }  // namespace
 
+const core::ParameterTable<KdeBackgroundParams>& KdeBackgroundParams::table() {
+  using P = KdeBackgroundParams;
+  static const auto table = core::ParameterTable<P>()
+                                .add("n_samples", &P::n_samples)
+                                .add("period", &P::period)
+                                .add("bandwidth", &P::bandwidth)
+                                .add("closing", &P::closing)
+                                .add("threads", &P::threads)
+                                .add("update_threshold", &P::update_threshold)
+                                .add("update_max_skips", &P::update_max_skips)
+                                .add("illumination_compensation", &P::illumination_compensation);
+  return table;
+}
+
 void validate(const KdeBackgroundParams& p) {
   if (p.n_samples < 1) {
     throw InvalidArgument("n_samples (N0) must be >= 1, got " + std::to_string(p.n_samples));
@@ -73,9 +84,9 @@ void validate(const KdeBackgroundParams& p) {
   if (p.period < 1) {
     throw InvalidArgument("period (K0) must be >= 1, got " + std::to_string(p.period));
   }
-  require_bandwidth(p.sigma_r, "sigma_r");
-  require_bandwidth(p.sigma_g, "sigma_g");
-  require_bandwidth(p.sigma_I, "sigma_I");
+  require_bandwidth(p.bandwidth[0], "bandwidth[0] (sigma_r)");
+  require_bandwidth(p.bandwidth[1], "bandwidth[1] (sigma_g)");
+  require_bandwidth(p.bandwidth[2], "bandwidth[2] (sigma_I)");
   if (p.closing < 0 || (p.closing > 1 && p.closing % 2 == 0)) {
     throw InvalidArgument("closing must be 0 (off), 1 (off) or an odd size in pixels, got " +
                           std::to_string(p.closing));
@@ -208,9 +219,10 @@ void KdeBackground::evaluate(const cv::Mat& bgr, cv::Mat& y) const {
     y.setTo(1.0f);
     return;
   }
-  const Exponents k{static_cast<float>(0.5 / (params_.sigma_r * params_.sigma_r)),
-                    static_cast<float>(0.5 / (params_.sigma_g * params_.sigma_g)),
-                    static_cast<float>(0.5 / (params_.sigma_I * params_.sigma_I * 765.0 * 765.0))};
+  const auto& sigma = params_.bandwidth;
+  const Exponents k{static_cast<float>(0.5 / (sigma[0] * sigma[0])),
+                    static_cast<float>(0.5 / (sigma[1] * sigma[1])),
+                    static_cast<float>(0.5 / (sigma[2] * sigma[2] * 765.0 * 765.0))};
   const float inv_n = 1.0f / static_cast<float>(count_);
   const int n = params_.n_samples;
   const int oldest = count_ < n ? 0 : next_slot_;

@@ -35,27 +35,42 @@ double kinect_depth_to_raw(double depth, double fx) {
   return raw < 0.0 ? kKinectNoReading : raw;
 }
 
+PinholeCamera PinholeCamera::of(int width, int height, double fx, std::optional<double> fy,
+                               std::optional<double> cx, std::optional<double> cy) {
+  return {fx, fy.value_or(fx), cx.value_or(0.5 * (width - 1)), cy.value_or(0.5 * (height - 1)),
+          width, height};
+}
+
+const core::ParameterTable<DepthLikelihoodParams>& DepthLikelihoodParams::table() {
+  using P = DepthLikelihoodParams;
+  static const auto table = core::ParameterTable<P>()
+                                .add("person_width", &P::person_width)
+                                .add("person_height", &P::person_height)
+                                .add("sigma_target", &P::sigma_target)
+                                .add("sigma_background", &P::sigma_background)
+                                .add("tempering", &P::tempering)
+                                .add("min_depth", &P::min_depth);
+  return table;
+}
+
 DepthLikelihood::DepthLikelihood(DepthLikelihoodParams params) : params_(params) {
-  const auto& c = params_.camera;
+  validate(params_);
+}
+
+void validate(const DepthLikelihoodParams& p) {
+  const auto& c = p.camera;
   require_positive(c.fx, "fx");
   require_positive(c.fy, "fy");
-  if (!std::isfinite(c.cx) || !std::isfinite(c.cy)) {
-    throw InvalidArgument("depth model principal point must be finite, got (" +
-                          std::to_string(c.cx) + ", " + std::to_string(c.cy) + ")");
-  }
-  if (c.width <= 0 || c.height <= 0) {
-    throw InvalidArgument("depth model image size must be positive, got " +
-                          std::to_string(c.width) + "x" + std::to_string(c.height));
-  }
-  require_positive(params_.person_width, "person_width");
-  require_positive(params_.person_height, "person_height");
-  require_positive(params_.sigma_target, "sigma_target");
-  require_positive(params_.sigma_background, "sigma_background");
-  require_positive(params_.min_depth, "min_depth");
-  if (!(params_.tempering > 0.0) || params_.tempering > 1.0) {
-    throw InvalidArgument("depth model tempering must lie in (0, 1], got " +
-                          std::to_string(params_.tempering));
-  }
+  require(std::isfinite(c.cx), "cx", c.cx, "finite");
+  require(std::isfinite(c.cy), "cy", c.cy, "finite");
+  require(c.width > 0, "camera width", c.width, "> 0");
+  require(c.height > 0, "camera height", c.height, "> 0");
+  require_positive(p.person_width, "person_width");
+  require_positive(p.person_height, "person_height");
+  require_positive(p.sigma_target, "sigma_target");
+  require_positive(p.sigma_background, "sigma_background");
+  require_positive(p.min_depth, "min_depth");
+  require(p.tempering > 0.0 && p.tempering <= 1.0, "tempering", p.tempering, "in (0, 1]");
 }
 
 DepthFrame DepthLikelihood::frame(const cv::Mat& depth) const {

@@ -11,6 +11,15 @@
 
 namespace vtrack::models {
 
+const core::ParameterTable<TbdLikelihoodParams>& TbdLikelihoodParams::table() {
+  using P = TbdLikelihoodParams;
+  static const auto table = core::ParameterTable<P>()
+                                .add("delta_f", &P::delta_f)
+                                .add("delta_b", &P::delta_b)
+                                .add("closing_size", &P::closing_size);
+  return table;
+}
+
 void validate(const TbdLikelihoodParams& p) {
   if (!(p.delta_f > 0.0) || !std::isfinite(p.delta_f)) {
     throw InvalidArgument("delta_f must be a positive finite number, got " + value_text(p.delta_f));

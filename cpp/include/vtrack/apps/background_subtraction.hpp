@@ -4,6 +4,7 @@
 #include <functional>
 #include <string>
 
+#include "vtrack/apps/video_source.hpp"  // FrameProgress
 #include "vtrack/apps/video_writer.hpp"  // is_video_output
 #include "vtrack/image/kde_background.hpp"
 
@@ -15,7 +16,6 @@ struct BgsResult {
 };
 
 // Called after every frame with (frames done, frames announced by the input or -1 if unknown).
-using Progress = std::function<void(long long done, long long total)>;
 
 // Reads `input` (VideoSource: a video file or an image folder), applies a KdeBackground with
 // `params` and writes every y image to `output`:
@@ -31,6 +31,6 @@ using Progress = std::function<void(long long done, long long total)>;
 // output cannot be written, InvalidArgument for bad `params`.
 BgsResult run_background_subtraction(const std::string& input, const std::string& output,
                                      const image::KdeBackgroundParams& params,
-                                     const Progress& progress = {});
+                                     const FrameProgress& progress = {});
 
 }  // namespace vtrack::apps

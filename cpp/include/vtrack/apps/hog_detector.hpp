@@ -9,6 +9,8 @@
 #include <opencv2/core.hpp>
 #include <opencv2/objdetect.hpp>
 
+#include "vtrack/core/parameters.hpp"
+
 namespace vtrack::apps {
 
 struct HogParams {
@@ -40,6 +42,8 @@ struct HogParams {
   // PETS09-S2L1 frames 1-397 the raw windows overlap the GT boxes by IoU < 0.5 almost always (GLMB
   // MOTA -0.93, IDF1 0.03); at 0.75: MOTA 0.73, IDF1 0.60 (benchmarks/detections.py).
   double person_fraction = 0.75;
+
+  static const core::ParameterTable<HogParams>& table();
 };
 
 // InvalidArgument naming the parameter and its value for an out-of-range one.

@@ -18,10 +18,13 @@
 #include <utility>
 #include <vector>
 
-#include "vtrack/apps/detection_file.hpp"
-#include "vtrack/apps/hog_detector.hpp"
-#include "vtrack/apps/track_video.hpp"
+#include "vtrack/apps/mot_files.hpp"
+#include "vtrack/apps/video_source.hpp"
+#include "vtrack/core/parameters.hpp"
 #include "vtrack/filters/glmb.hpp"
+#include "vtrack/filters/glmb_tracker.hpp"
+#include "vtrack/filters/track_management.hpp"
+#include "vtrack/filters/tracks.hpp"
 
 namespace vtrack::apps {
 
@@ -74,20 +77,27 @@ struct BoxTrackerParams {
   double gate_threshold = 38.24;
   // Detections with confidence below this are ignored (-inf keeps all).
   double min_confidence = -std::numeric_limits<double>::infinity();
-  // Confirmation: a track of the MAP hypothesis is reported only from its min_age-th frame of
-  // existence on (age = frames since its label's birth, inclusive: 1 reports every track), as
-  // SORT's min_hits. An estimate, not a filter change: the GLMB itself is unaffected. Measured
-  // on frames 1-397 (benchmarks/detections.py): 3 trims a few FPs of short-lived tracks (MOTA
-  // +0.005 to +0.024 on Faster R-CNN and ACF, HOTA +0.002) but the GLMB's false positives are
-  // mostly long-lived (duplicate and coasting tracks), so the default reports every track.
-  int min_age = 1;
-  // Hypothesis ranking (GlmbParams::ranking): false = Murty's k best (exact, deterministic),
-  // true = the Gibbs sampler, seeded by `seed` (same seed, same tracks). Measured on frames
+  // Confirmation and lost-track memory (filters/track_management.hpp, shared with the MB
+  // tracker): a track of the MAP hypothesis is reported once it has been in the MAP estimate on
+  // confirm_frames frames (as SORT's min_hits); a confirmed label that leaves the estimate is
+  // remembered for lost_memory frames, and a new label whose box overlaps it (moved on at the
+  // track's velocity) by IoU >= relabel_overlap reports under its id. Estimates only: the GLMB
+  // itself is unaffected. Measured on frames 1-397 (benchmarks/detections.py, as min_age, the
+  // label's age, which equals the count while a track stays in the estimate): 3 trims a few FPs
+  // of short-lived tracks (MOTA +0.005 to +0.024 on Faster R-CNN and ACF, HOTA +0.002) but the
+  // GLMB's false positives are mostly long-lived (duplicate and coasting tracks), so the default
+  // reports every track; the memory is off by default (the GLMB keeps labels through misses by
+  // itself).
+  filters::TrackManagementParams management{1, 0, 0.3};
+  // Hypothesis ranking (GlmbParams::ranking): "murty" = Murty's k best (exact, deterministic),
+  // "gibbs" = the Gibbs sampler, seeded by `seed` (same seed, same tracks). Measured on frames
   // 1-397: Gibbs raises MOTA (ACF all -0.13 -> 0.23, Faster R-CNN 0.47 -> 0.54) and lowers IDF1
   // and HOTA (Faster R-CNN HOTA 0.42 -> 0.34): it explores deaths Murty's truncated ranking
   // misses, and also breaks tracks.
-  bool gibbs_ranking = false;
-  int seed = 0;
+  filters::HypothesisRanking ranking = filters::HypothesisRanking::murty;
+  std::uint64_t seed = 0;
+
+  static const core::ParameterTable<BoxTrackerParams>& table();
 };
 
 // InvalidArgument naming the parameter and its value.
@@ -98,62 +108,41 @@ models::LinearGaussianMotion box_motion(const BoxTrackerParams& params);
 models::LinearGaussianObservation box_observation(const BoxTrackerParams& params);
 // The GLMB configuration (p_S, p_D, kappa, budget, gate, adaptive birth) for a width x height
 // image.
-filters::GlmbParams box_glmb_params(const BoxTrackerParams& params, double width, double height);
+filters::GlmbParams box_glmb_params(const BoxTrackerParams& params, int width, int height);
 
-struct BoxTrack {
-  std::uint64_t id = 0;  // 1, 2, ... in order of first appearance
-  double x = 0, y = 0, w = 0, h = 0;
-};
-
-// Frame-by-frame tracker: one GLMB filter and the map from its labels to MOT ids.
+// Frame-by-frame tracker of image boxes: the GLMB tracker (filters/glmb_tracker.hpp) with the
+// box model above.
 class BoxTracker {
  public:
-  BoxTracker(double width, double height, const BoxTrackerParams& params = {});
+  // width x height: the image (positive).
+  BoxTracker(int width, int height, const BoxTrackerParams& params = {});
   // One frame's detections (x, y, w, h and confidence used; the frame field is ignored), and the
-  // tracks estimated at that frame. Boxes must pass validate_detection.
-  std::vector<BoxTrack> step(const std::vector<Detection>& detections);
-  const filters::GaussianGlmbFilter& filter() const { return filter_; }
+  // tracks reported at that frame: ids 1, 2, ... in order of first report, the box, score = the
+  // label's posterior existence probability, state [cx, vcx, cy, vcy, w, h] with its covariance,
+  // the GLMB label. Boxes must pass validate_detection.
+  const filters::Tracks& step(const std::vector<Detection>& detections);
+  const filters::GlmbTracker& tracker() const { return tracker_; }
+  const BoxTrackerParams& params() const { return params_; }
+  int width() const { return width_; }
+  int height() const { return height_; }
 
  private:
   BoxTrackerParams params_;
-  filters::GaussianGlmbFilter filter_;
-  std::map<std::pair<int, int>, std::uint64_t> ids_;
+  int width_, height_;
+  filters::GlmbTracker tracker_;
 };
 
-// The smallest image (width, height), from (0, 0), that contains every box: the image size when
-// a detection file comes without one. (1, 1) for no detections.
-std::pair<double, double> detections_extent(const std::vector<Detection>& detections);
+// The smallest image (width, height), from (0, 0), that contains every box, rounded up to whole
+// pixels: the image size when a detection file comes without one. (1, 1) for no detections.
+std::pair<int, int> detections_extent(const std::vector<Detection>& detections);
 
 // Tracks the detections of frames 1 .. max(last_frame, the last frame with a detection), in a
-// width x height image (so trailing frames without detections still get their estimates); MOTChallenge rows, conf 1, ids 1, 2, ... in order of first appearance.
-std::vector<TrackRow> track_detections(const std::vector<Detection>& detections, double width,
-                                       double height, const BoxTrackerParams& params = {},
+// width x height image (so trailing frames without detections still get their estimates); width
+// or height 0 = the detections' extent. MOTChallenge rows, conf = the track's score, ids 1, 2,
+// ... in order of first appearance.
+std::vector<TrackRow> track_detections(const std::vector<Detection>& detections, int width,
+                                       int height, const BoxTrackerParams& params = {},
                                        long long last_frame = 0,
                                        const FrameProgress& progress = {});
-
-// The detection-driven pipeline's parameters: `detector` (HogParams names) and `tracker`
-// (BoxTrackerParams names), the sections of its config file:
-//   detector: {hit_threshold: 0.3, upscale: 1.5}
-//   tracker: {detection_probability: 0.85, clutter_rate: 2}
-struct GlmbPipelineParams {
-  HogParams detector;
-  BoxTrackerParams tracker;
-};
-
-// Reads a YAML or JSON config into `params` (unlisted parameters keep their values) and
-// validates it: IoError for a missing or unparsable file, InvalidArgument naming an unknown
-// section or parameter or a value out of range.
-void load_pipeline_config(const std::string& path, GlmbPipelineParams& params);
-
-struct GlmbVideoResult {
-  std::vector<TrackRow> tracks;
-  std::vector<Detection> detections;  // the HOG detections of every frame
-};
-
-// Video (or image folder) -> HOG people detector -> box GLMB tracker, every frame. `render`
-// writes the annotated video (AtomicVideoWriter). IoError naming the frame for corrupt input.
-GlmbVideoResult track_video_glmb(const std::string& input, const HogParams& detector,
-                                 const BoxTrackerParams& tracker, const std::string& render = {},
-                                 const FrameProgress& progress = {});
 
 }  // namespace vtrack::apps

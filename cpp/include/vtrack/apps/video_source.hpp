@@ -1,6 +1,7 @@
 #pragma once
 // Frames from a video file (anything OpenCV's videoio can open) or from a folder of images
 // (sorted by file name), behind one interface.
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -9,6 +10,11 @@
 #include <opencv2/videoio.hpp>
 
 namespace vtrack::apps {
+
+// Called by every frame-by-frame job (pipelines, background subtraction, detections) after each
+// frame with (frames done, frames announced by the input or -1 if unknown). The one progress
+// callback type of the CLI and Python.
+using FrameProgress = std::function<void(long long done, long long total)>;
 
 class VideoSource {
  public:

@@ -14,6 +14,14 @@ class InvalidArgument : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A parameter name the component does not have, or a value of the wrong kind for a parameter
+// (a name where a number is due): a mistake in how the call is written rather than in a value
+// (Python: TypeError subclass; the CLI: a usage error, exit status 2).
+class InvalidType : public InvalidArgument {
+ public:
+  using InvalidArgument::InvalidArgument;
+};
+
 // A file or video could not be read or written (Python: OSError subclass).
 class IoError : public std::runtime_error {
  public:

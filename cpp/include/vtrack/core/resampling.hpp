@@ -4,6 +4,7 @@
 // See Douc, Cappe & Moulines (2005), "Comparison of resampling schemes for particle filtering".
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -17,6 +18,8 @@ enum class ResamplingScheme { Multinomial, Stratified, Systematic, Residual };
 // Parses "multinomial", "stratified", "systematic" or "residual"; InvalidArgument otherwise.
 ResamplingScheme parse_resampling_scheme(const std::string& name);
 const char* to_string(ResamplingScheme scheme);
+// Every scheme with its name, for parameter tables.
+const std::vector<std::pair<std::string, ResamplingScheme>>& resampling_scheme_names();
 
 // Draws `count` ancestor indices from `weights` (finite, non-negative, not all zero; they need not
 // sum to one). A particle of weight exactly zero is never chosen.

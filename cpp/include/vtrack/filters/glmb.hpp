@@ -14,11 +14,13 @@
 // models/linear_gaussian.hpp) or a weighted particle set (ParticleTracks, filters/particle_glmb.hpp,
 // with the paper's switching observation model).
 #include <cstdint>
+#include <map>
 #include <utility>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "vtrack/core/parameters.hpp"
 #include "vtrack/core/random.hpp"
 #include "vtrack/models/linear_gaussian.hpp"
 
@@ -52,6 +54,10 @@ struct AdaptiveBirthParams {
   double expected_births = 0.1;  // lambda_B: expected number of adaptive births per scan
   double max_existence = 0.03;   // r_B,max: cap on one detection's birth existence
   Eigen::MatrixXd cov;           // x_dim x x_dim; must be given when enabled
+
+  // adaptive_birth_rate (expected_births), adaptive_birth_max_existence; `enabled` and `cov`
+  // come with the covariance matrix, a model argument rather than a parameter.
+  static const core::ParameterTable<AdaptiveBirthParams>& table();
 };
 
 // How each prior hypothesis's posterior hypotheses are generated from its cost matrix.
@@ -109,8 +115,23 @@ struct GlmbParams {
   AdaptiveBirthParams adaptive_birth;
   FieldOfView field_of_view;  // state-dependent p_S and p_D (off: constant)
   HypothesisRanking ranking = HypothesisRanking::murty;
-  std::uint64_t seed = 0;  // the Gibbs sampler's engine (unused by Murty's ranking)
+  // The filter's random engine: the Gibbs sampler's, and the particle densities' (prediction,
+  // births, resampling) of the particle GLMB. Murty's ranking with Gaussian densities uses none.
+  std::uint64_t seed = 0;
+
+  // Names: the fields above, ranking "murty" | "gibbs", and adaptive_birth's (field_of_view is a
+  // box in state space, set by the trackers that use it).
+  static const core::ParameterTable<GlmbParams>& table();
 };
+
+// InvalidArgument naming the parameter and its value (dimensions are checked by the filter,
+// which knows the state's).
+void validate(const GlmbParams& params);
+// InvalidArgument unless the models, births, field of view and adaptive-birth covariance agree on
+// the state and measurement dimensions.
+void check_glmb_dimensions(const models::LinearGaussianMotion& motion,
+                           const models::LinearGaussianObservation& observation,
+                           const std::vector<GaussianBirth>& births, const GlmbParams& params);
 
 // Labels of adaptive births: birth_index = (number of fixed births) + (index of the proposing
 // detection in the previous scan's detection matrix).
@@ -118,6 +139,7 @@ struct GlmbEstimate {
   TrackLabel label;
   Eigen::VectorXd mean;
   Eigen::MatrixXd cov;
+  double existence = 1.0;  // the label's posterior probability of existing (over all hypotheses)
 };
 
 // The track-density policy of the Gaussian filter: one Gaussian per track, the Kalman recursion.
@@ -173,8 +195,12 @@ class GlmbFilter {
   void step(const Eigen::Ref<const Eigen::MatrixXd>& detections);
 
   // Estimates at the current scan: the tracks of the most probable hypothesis among those with the
-  // MAP cardinality (the usual delta-GLMB estimator).
+  // MAP cardinality (the usual delta-GLMB estimator), each with its label's existence
+  // probability.
   std::vector<GlmbEstimate> estimates() const;
+  // Whether some hypothesis holds a track with this label (false once the track has surely
+  // ended).
+  bool holds(const TrackLabel& label) const;
   // P(n targets), n = 0 .. the largest hypothesis size.
   Eigen::VectorXd cardinality_distribution() const;
   int map_cardinality() const;
@@ -196,12 +222,43 @@ class GlmbFilter {
     std::vector<int> tracks;  // indices into tracks_, increasing
     double log_weight = 0.0;  // normalised over hypotheses
   };
-
+  // The factors of one scan, per candidate row (surviving prior tracks, then birth components),
+  // shared by every hypothesis (see score_candidates).
+  struct ScanFactors {
+    std::vector<typename Tracks::Candidate> candidates;
+    std::vector<TrackLabel> labels;  // each row's label (births: labelled at this scan)
+    Eigen::VectorXd log_exists, log_absent, log_missed;
+    Eigen::MatrixXd log_detected;  // rows x detections
+  };
+  // The posterior hypotheses of one scan before normalisation, and the child tracks they use.
+  struct Posterior {
+    std::vector<Track> children;
+    std::vector<int> child_detection;             // the detection each child took, -1 if missed
+    std::map<std::pair<int, int>, int> child_of;  // (row, detection or -1) -> child
+    std::map<std::vector<int>, double> weights;   // child set -> log weight (unnormalised)
+  };
   // The posterior hypotheses of one prior hypothesis: Murty's k best or the Gibbs sampler's.
   struct RankedChoices {
     Eigen::Matrix<std::int64_t, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> assignments;
     Eigen::VectorXd costs;
   };
+
+  // The stages of step(), in order.
+  ScanFactors score_candidates(const Eigen::Ref<const Eigen::MatrixXd>& detections);
+  Posterior rank_hypotheses(const ScanFactors& factors,
+                            const Eigen::Ref<const Eigen::MatrixXd>& detections);
+  // Normalised, pruned below prune_threshold and capped at max_hypotheses (best first).
+  std::vector<Hypothesis> normalise_and_prune(const Posterior& posterior) const;
+  // Replaces tracks_ by the children the hypotheses use (renumbered) and hypotheses_ by them.
+  void keep_used_tracks(std::vector<Hypothesis> hypotheses, Posterior& posterior);
+
+  // The child of candidate `row` updated by `detection` (-1: missed), made once per scan.
+  int child_index(const ScanFactors& factors, Posterior& posterior, int row, int detection,
+                  const Eigen::Ref<const Eigen::MatrixXd>& detections);
+  // The cost matrix of one prior hypothesis (its tracks and the births as rows) over the
+  // detections some row can take (`columns`), missed and absent.
+  Eigen::MatrixXd cost_matrix(const ScanFactors& factors, const std::vector<int>& rows,
+                              std::vector<int>& columns) const;
   RankedChoices rank(const Eigen::MatrixXd& cost, std::int64_t requested);
 
   // Replaces adaptive_births_ by the births that `detections` propose for the next scan, given
@@ -223,6 +280,9 @@ class GlmbFilter {
   int time_ = 0;
 };
 
+// The member definitions are in filters/glmb_impl.hpp: a translation unit that adds a density
+// policy includes it and instantiates GlmbFilter<Policy> (glmb.cpp does GaussianTracks,
+// particle_glmb.cpp ParticleTracks).
 extern template class GlmbFilter<GaussianTracks>;
 
 // The Gaussian (Kalman) delta-GLMB filter. Deterministic: no random numbers.

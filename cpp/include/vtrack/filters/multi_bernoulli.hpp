@@ -28,8 +28,11 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
+#include "vtrack/core/parameters.hpp"
 #include "vtrack/core/random.hpp"
 #include "vtrack/core/resampling.hpp"
+#include "vtrack/filters/track_management.hpp"
+#include "vtrack/filters/tracks.hpp"
 #include "vtrack/models/tbd_likelihood.hpp"
 
 namespace vtrack::filters {
@@ -123,20 +126,17 @@ struct MultiBernoulliParams {
   // chosen on frames 1-397 of PETS09-S2L1 (benchmarks/pets09.py, whose docstring has the sweep)
   // and scored on 398-795.
 
-  // Confirmation: a component is reported only once its r has exceeded estimate_threshold on
-  // confirm_frames steps (not necessarily consecutive); from then on it is reported whenever
-  // r > estimate_threshold. Births on ghosts, kerb edges and the unexplained part of a silhouette
-  // rarely live that long. 1 reports at once, as the paper does. (PETS09 frames 1-397, calibrated
-  // MOTA / IDF1: 3 frames 0.546 / 0.593, 5 frames 0.544 / 0.597, 8 frames 0.530 / 0.597.)
-  int confirm_frames = 5;
-  // Lost-track memory: a confirmed component that is pruned (its person occluded, or merged into
-  // another's blob, or absorbed by a merge) leaves its label, last reported box and velocity here
-  // for lost_memory frames. An unconfirmed component whose estimate overlaps the lost box, moved
-  // on at that velocity, by IoU >= relabel_overlap takes that label back and is confirmed at
-  // once, so a person keeps one identity across a short occlusion. 0 disables it. (PETS09: no
-  // change on frames 1-397; on 398-795, where people cross in groups, IDF1 0.397 -> 0.447.)
-  int lost_memory = 30;
-  double relabel_overlap = 0.3;
+  // Confirmation and lost-track memory (filters/track_management.hpp, shared with the box GLMB;
+  // names confirm_frames, lost_memory, relabel_overlap). An estimate is a component with
+  // r > estimate_threshold; it is reported once it has had one on confirm_frames steps (not
+  // necessarily consecutive). Births on ghosts, kerb edges and the unexplained part of a
+  // silhouette rarely live that long. (PETS09 frames 1-397, calibrated MOTA / IDF1: 3 frames
+  // 0.546 / 0.593, 5 frames 0.544 / 0.597, 8 frames 0.530 / 0.597.) A confirmed component that is
+  // pruned (its person occluded, or merged into another's blob, or absorbed by a merge) is
+  // remembered for lost_memory frames; an unconfirmed component whose estimate overlaps the lost
+  // box, moved on at the lost velocity, by IoU >= relabel_overlap takes that label back. (PETS09:
+  // no change on frames 1-397; on 398-795, where people cross in groups, IDF1 0.397 -> 0.447.)
+  TrackManagementParams management{5, 30, 0.3};
   // Drift in the prediction (eq. 22 is a random walk, which lags a walking person and lets a box
   // slide onto whichever neighbour it meets when two people cross): each component keeps v, an
   // exponential average (weight velocity_smoothing on the newest) of the frame-to-frame change
@@ -159,16 +159,16 @@ struct MultiBernoulliParams {
   double box_scale_h = 1.47;
   double box_offset_x = -0.01;
   double box_offset_y = -0.01;
+
+  // The filter's random engine (prediction noise, births, resampling): the same seed gives the
+  // same tracks.
+  std::uint64_t seed = 0;
+
+  static const core::ParameterTable<MultiBernoulliParams>& table();
 };
 
 // Throws InvalidArgument naming the parameter and its value when one is out of range.
 void validate(const MultiBernoulliParams& params);
-
-struct Track {
-  std::uint64_t label;
-  float x, y, w, h;  // weighted mean box (top-left, size)
-  double existence;  // r
-};
 
 struct BernoulliComponent {
   std::uint64_t label;
@@ -176,27 +176,24 @@ struct BernoulliComponent {
   double existence;   // r
   BoxStates particles;        // 4 x L
   Eigen::VectorXd log_weights;  // normalised: log_sum_exp = 0
-  // Track management (see MultiBernoulliParams::confirm_frames and below).
-  int hits = 0;              // steps on which r exceeded estimate_threshold
-  bool confirmed = false;    // reported whenever r > estimate_threshold
-  Eigen::Vector2f velocity = Eigen::Vector2f::Zero();  // smoothed centre change per frame
-  Eigen::Vector4f last_mean = Eigen::Vector4f::Zero(); // estimate at the previous step
-  Eigen::Vector4f last_box = Eigen::Vector4f::Zero();  // estimate when last reported
-  int last_reported = -1;    // step index of that report
+  // Track management (MultiBernoulliParams::management); record.velocity is also the drift of
+  // the prediction (velocity_smoothing).
+  TrackRecord record;
+  Eigen::Vector4f last_mean = Eigen::Vector4f::Zero();  // estimate at the previous step
   // Weighted mean box.
   Eigen::Vector4f mean() const;
 };
 
 class MultiBernoulliFilter {
  public:
-  MultiBernoulliFilter(int width, int height, const MultiBernoulliParams& params = {},
-                       std::uint64_t seed = 0);
+  MultiBernoulliFilter(int width, int height, const MultiBernoulliParams& params = {});
 
   // One predict-update cycle on the background-subtracted image y (H x W float32 in [0, 1]).
-  // Returns the current tracks, ordered by label.
-  std::vector<Track> step(const cv::Mat& y);
+  // Returns the reported tracks in label order: id = label, the reported box, score = r, state =
+  // the filter's own box (x, y, w, h) before the box calibration.
+  const Tracks& step(const cv::Mat& y);
 
-  const std::vector<Track>& tracks() const { return tracks_; }
+  const Tracks& tracks() const { return tracks_; }
   const std::vector<BernoulliComponent>& components() const { return components_; }
   const MultiBernoulliParams& params() const { return params_; }
   const models::TbdLikelihood& likelihood() const { return likelihood_; }
@@ -218,24 +215,15 @@ class MultiBernoulliFilter {
   void clamp_sizes(BoxStates& states) const;
   // Confirmation, relabelling from the lost memory and velocities; fills tracks_.
   void manage_tracks();
-  // A confirmed component that leaves remembers its label for lost_memory frames.
-  void remember_lost(const BernoulliComponent& c);
-
-  struct LostTrack {
-    std::uint64_t label;
-    Eigen::Vector4f box;       // last reported estimate
-    Eigen::Vector2f velocity;  // per frame
-    int frame;                 // step index of that report
-  };
-  std::vector<LostTrack> lost_;
 
   MultiBernoulliParams params_;
   int width_;
   int height_;
   core::Rng rng_;
   models::TbdLikelihood likelihood_;
+  TrackManager management_;
   std::vector<BernoulliComponent> components_;
-  std::vector<Track> tracks_;
+  Tracks tracks_;
   std::uint64_t next_label_ = 1;
   int frame_ = 0;
   // Scratch buffers reused across frames.
@@ -259,8 +247,6 @@ double box_overlap(const Eigen::Vector4f& a, const Eigen::Vector4f& b);
 void merge_overlapping(std::vector<BernoulliComponent>& components, double min_overlap,
                        double max_existence,
                        std::vector<BernoulliComponent>* absorbed = nullptr);
-// Intersection over union of two boxes (x, y, w, h); 0 when either is empty.
-double box_iou(const Eigen::Vector4f& a, const Eigen::Vector4f& b);
 // r rho / (1 - r + r rho) of eq. (23) from log rho, computed as a logistic of the log odds so it
 // is exact for huge or tiny rho and never NaN.
 double updated_existence(double r, double log_rho);

@@ -83,9 +83,8 @@ struct ParticleDensity {
 };
 
 struct ParticleParams {
-  int particles = 500;             // particles per track (birth densities are sampled with this many)
-  double resample_threshold = 0.5;  // resample when N_eff < resample_threshold * particles
-  std::uint64_t seed = 0;          // the filter's random engine (prediction, births, resampling)
+  int n_particles = 500;  // particles per track (birth densities are sampled with this many)
+  double resample_threshold = 0.5;  // resample when N_eff < resample_threshold * n_particles
   // Whether birth rows take the depth factor in their missed branch too (eq. 8's psi applies to
   // every label); false scores a birth's missed branch by (1 - p_D) alone.
   bool depth_for_births = true;
@@ -110,7 +109,12 @@ struct ParticleParams {
   // nothing, so duplicates live there: cardinality error 2.6 (vs 0.33), OSPA 0.39 (vs 0.155),
   // label switches 210 (vs 189).
   bool occluded_detection_probability = false;
+
+  static const core::ParameterTable<ParticleParams>& table();
 };
+
+// InvalidArgument naming the parameter and its value.
+void validate(const ParticleParams& params);
 
 class ParticleTracks {
  public:
@@ -127,7 +131,9 @@ class ParticleTracks {
     Eigen::VectorXd log_visible;
   };
 
-  ParticleTracks(ParticleParams params, const models::LinearGaussianMotion& motion,
+  // `seed` seeds the densities' random engine (the filter's GlmbParams::seed).
+  ParticleTracks(ParticleParams params, std::uint64_t seed,
+                 const models::LinearGaussianMotion& motion,
                  const models::LinearGaussianObservation& observation,
                  std::optional<models::DepthLikelihood> depth_model);
 

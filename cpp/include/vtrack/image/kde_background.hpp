@@ -42,10 +42,13 @@
 // saves the division but was measured no faster (it moves 4x more memory), so the compact form
 // stays. Rows are independent and each is computed by one thread, so results do not depend on
 // the thread count.
+#include <array>
 #include <cstddef>
 #include <vector>
 
 #include <opencv2/core.hpp>
+
+#include "vtrack/core/parameters.hpp"
 
 namespace vtrack::image {
 
@@ -60,7 +63,9 @@ struct KdeBackgroundParams {
   // On vtest.avi (benchmarks/bgs_quality.py, sigma = (0.03, 0.03, 0.06)) K0 = 5, 10, 20 give
   // recall / precision proxies 0.87 / 0.71, 0.89 / 0.69, 0.91 / 0.65: the choice is not critical.
   int period = 10;
-  // Kernel bandwidths sigma_r, sigma_g, sigma_I (eqs. 9, 10), fixed, never estimated from the
+  // Kernel bandwidths (sigma_r, sigma_g, sigma_I) of eqs. 9, 10 -- one parameter, `bandwidth`,
+  // everywhere (C++, config files, --set bandwidth=r,g,I, Python bandwidth=(r, g, I)), because
+  // the three are one kernel's bandwidth vector. Fixed, never estimated from the
   // data (compressed video repeats pixel values exactly, so estimated bandwidths collapse).
   // The chromaticity of a mid-grey pixel (S ~ 300) moves by ~0.01 under the +-3 grey levels of
   // sensor and XVID noise, and by more on dark pixels (r = R/S); sigma_r = sigma_g = 0.03 covers
@@ -70,9 +75,7 @@ struct KdeBackgroundParams {
   // (0.02, 0.02, 0.06) gives recall proxy 0.92 / precision proxy 0.53, (0.03, 0.03, 0.06)
   // 0.89 / 0.69, (0.04, 0.04, 0.08) 0.81 / 0.78: the default keeps nearly every person dark
   // while halving the false foreground of the narrower kernels. Any value > 0 is accepted.
-  double sigma_r = 0.03;
-  double sigma_g = 0.03;
-  double sigma_I = 0.06;
+  std::array<double, 3> bandwidth = {0.03, 0.03, 0.06};
   // Side of the square structuring element of the closing of y (section 3.2); 0 or 1 = off,
   // otherwise an odd number of pixels. 5 (was 3) also joins the fragments of a silhouette (XVID
   // blocks, clothes close to the background colour), and the selective update's mask is taken
@@ -114,6 +117,9 @@ struct KdeBackgroundParams {
   // 1-397 (tracker seeds 0-2, calibrated: 0.579 / 0.601 -> 0.558 / 0.558; on 398-795 0.477 /
   // 0.415 -> 0.522 / 0.436): the mean intensity moves with the people in view.
   bool illumination_compensation = false;
+
+  // The names of the fields (config files, --set, Python keywords).
+  static const core::ParameterTable<KdeBackgroundParams>& table();
 };
 
 // InvalidArgument naming the field and its value unless n_samples >= 1, period >= 1, every

@@ -33,11 +33,13 @@
 // (in (0, 1]; 1 = the paper's eq. 4 exactly), i.e. treat the footprint as worth tempering x n
 // independent pixels. The default is chosen on vtrack.rgbd's synthetic scenario (see
 // DepthLikelihoodParams); it is a modelling choice, not something the paper gives.
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
+#include "vtrack/core/parameters.hpp"
 #include "vtrack/image/integral_image.hpp"
 
 namespace vtrack::models {
@@ -64,6 +66,11 @@ struct PinholeCamera {
   double cy = 239.5;
   int width = 640;  // image size, pixels
   int height = 480;
+
+  // A width x height camera whose unset focal length fy equals fx and whose unset principal
+  // point is the image centre ((width - 1) / 2, (height - 1) / 2).
+  static PinholeCamera of(int width, int height, double fx, std::optional<double> fy = {},
+                          std::optional<double> cx = {}, std::optional<double> cy = {});
 };
 
 struct DepthLikelihoodParams {
@@ -104,7 +111,14 @@ struct DepthLikelihoodParams {
   // (measured with births scored without depth; the default, births with depth, differs little).
   double tempering = 3e-4;
   double min_depth = 0.1;  // states nearer than this (m) have an empty footprint
+
+  // The tunable names: person_width, person_height, sigma_target, sigma_background, tempering,
+  // min_depth (the camera is the model's geometry, given with it).
+  static const core::ParameterTable<DepthLikelihoodParams>& table();
 };
+
+// InvalidArgument naming the parameter (or the camera's field) and its value.
+void validate(const DepthLikelihoodParams& params);
 
 // A region of the image known to be covered by a surface at some depth (the footprint of a
 // detected person): a target farther than `hides_beyond` is hidden there, so those pixels of its

@@ -33,6 +33,7 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
+#include "vtrack/core/parameters.hpp"
 #include "vtrack/image/integral_image.hpp"
 
 namespace vtrack::models {
@@ -69,6 +70,8 @@ struct TbdLikelihoodParams {
   // of a silhouette: first 300 frames, delta_b 1.5e-3, calibrated MOTA 0.22 with 5 vs 0.11 with
   // 3; 7 was worse, second half, delta_b 2e-3: 0.24 vs 0.32 with 5.)
   int closing_size = 0;
+
+  static const core::ParameterTable<TbdLikelihoodParams>& table();
 };
 
 // Throws InvalidArgument naming the parameter when a value is out of range.

@@ -1,4 +1,4 @@
-#include "vtrack/apps/detection_file.hpp"
+#include "vtrack/apps/mot_files.hpp"
 
 #include <cerrno>
 #include <cmath>
@@ -121,6 +121,28 @@ void write_detections(const std::string& path, const std::vector<Detection>& det
     for (const auto& d : detections) {
       std::snprintf(line, sizeof line, "%lld,-1,%.3f,%.3f,%.3f,%.3f,%.6g,-1,-1,-1\n", d.frame, d.x,
                     d.y, d.w, d.h, d.confidence);
+      out << line;
+    }
+  });
+}
+
+void append_rows(std::vector<TrackRow>& rows, long long frame, const filters::Tracks& tracks) {
+  for (const auto& t : tracks) {
+    if (std::isnan(t.x) || std::isnan(t.y) || std::isnan(t.w) || std::isnan(t.h)) {
+      throw InvalidArgument("track " + std::to_string(t.id) +
+                            " has no image box: MOTChallenge rows need one");
+    }
+    rows.push_back({frame, t.id, static_cast<float>(t.x), static_cast<float>(t.y),
+                    static_cast<float>(t.w), static_cast<float>(t.h), t.score});
+  }
+}
+
+void write_mot(const std::string& path, const std::vector<TrackRow>& rows) {
+  write_text_atomically(path, [&](std::ostream& out) {
+    char line[160];
+    for (const auto& r : rows) {
+      std::snprintf(line, sizeof line, "%lld,%llu,%.2f,%.2f,%.2f,%.2f,%.4f,-1,-1,-1\n", r.frame,
+                    static_cast<unsigned long long>(r.id), r.x, r.y, r.w, r.h, r.confidence);
       out << line;
     }
   });

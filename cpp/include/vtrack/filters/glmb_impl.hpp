@@ -1,0 +1,352 @@
+#pragma once
+// Member definitions of GlmbFilter<Tracks> (filters/glmb.hpp). Included only by the translation
+// units that instantiate the filter for a track-density policy (glmb.cpp: GaussianTracks,
+// particle_glmb.cpp: ParticleTracks), so a new policy is added without editing either.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <utility>
+
+#include <Eigen/Cholesky>
+
+#include "vtrack/core/errors.hpp"
+#include "vtrack/core/weights.hpp"
+#include "vtrack/filters/assign.hpp"
+#include "vtrack/filters/glmb.hpp"
+
+namespace vtrack::filters {
+
+template <class Tracks>
+GlmbFilter<Tracks>::GlmbFilter(models::LinearGaussianMotion motion,
+                               models::LinearGaussianObservation observation,
+                               std::vector<GaussianBirth> births, GlmbParams params, Tracks tracks)
+    : tracks_model_(std::move(tracks)),
+      motion_(std::move(motion)),
+      observation_(std::move(observation)),
+      births_(std::move(births)),
+      params_(std::move(params)),
+      ranking_rng_(params_.seed) {
+  validate(params_);
+  check_glmb_dimensions(motion_, observation_, births_, params_);
+  hypotheses_.push_back({{}, 0.0});  // no target, probability 1
+}
+
+template <class Tracks>
+void GlmbFilter<Tracks>::step(const Eigen::Ref<const Eigen::MatrixXd>& detections) {
+  if (detections.rows() != observation_.H.rows() && detections.cols() > 0) {
+    throw InvalidArgument("detections must have " + std::to_string(observation_.H.rows()) +
+                          " rows (one detection per column), got " +
+                          std::to_string(detections.rows()));
+  }
+  if (!detections.allFinite()) throw InvalidArgument("detections contain NaN or inf");
+  ++time_;
+  const ScanFactors factors = score_candidates(detections);
+  Posterior posterior = rank_hypotheses(factors, detections);
+  const auto n_det = static_cast<Eigen::Index>(detections.cols());
+  if (posterior.weights.empty()) {
+    // Every hypothesis was infeasible (e.g. p_D = p_S = 1 with fewer detections than tracks):
+    // the data contradict the model, so restart from "no targets" rather than produce NaN.
+    tracks_.clear();
+    hypotheses_.assign(1, {{}, 0.0});
+    propose_adaptive_births(detections, Eigen::VectorXd::Zero(n_det));
+    return;
+  }
+  std::vector<Hypothesis> updated = normalise_and_prune(posterior);
+  if (params_.adaptive_birth.enabled) {
+    // r_U(z_j): the posterior probability that detection j was assigned to a track.
+    Eigen::VectorXd assigned = Eigen::VectorXd::Zero(n_det);
+    for (const auto& h : updated) {
+      for (int t : h.tracks) {
+        const int j = posterior.child_detection[t];
+        if (j >= 0) assigned[j] += std::exp(h.log_weight);
+      }
+    }
+    propose_adaptive_births(detections, assigned);
+  }
+  keep_used_tracks(std::move(updated), posterior);
+}
+
+template <class Tracks>
+typename GlmbFilter<Tracks>::ScanFactors GlmbFilter<Tracks>::score_candidates(
+    const Eigen::Ref<const Eigen::MatrixXd>& detections) {
+  // Per candidate track (surviving prior tracks, then birth components): the predicted density,
+  // the log-probabilities of existing / not existing at this scan, log(p_D <p, g(z_j|.)> / kappa)
+  // for every detection (-inf outside the gate), and the log missed-detection factor
+  // log((1 - p_D) <p, psi_missed>) -- per row, because the switching model's missed branch
+  // depends on the track (its depth likelihood). These factors are shared by all hypotheses.
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  const int n_prior = static_cast<int>(tracks_.size());
+  const int n_fixed = static_cast<int>(births_.size());
+  const int n_rows = n_prior + n_fixed + static_cast<int>(adaptive_births_.size());
+  const int n_det = static_cast<int>(detections.cols());
+  ScanFactors f;
+  f.candidates.reserve(n_rows);
+  f.log_exists.resize(n_rows);
+  f.log_absent.resize(n_rows);
+  f.log_missed.resize(n_rows);
+  f.log_detected.resize(n_rows, n_det);
+  Eigen::RowVectorXd log_g(n_det);
+  const FieldOfView& fov = params_.field_of_view;
+  const double log_kappa = std::log(params_.clutter_intensity);
+  for (int r = 0; r < n_rows; ++r) {
+    const bool is_birth = r >= n_prior;
+    const int b = r - n_prior;  // birth component: the fixed ones, then the adaptive ones
+    const GaussianBirth* birth =
+        !is_birth ? nullptr : b < n_fixed ? &births_[b] : &adaptive_births_[b - n_fixed];
+    f.labels.push_back(!is_birth     ? tracks_[r].label
+                       : b < n_fixed ? TrackLabel{time_, b}
+                                     : TrackLabel{time_, n_fixed + adaptive_birth_detections_[b - n_fixed]});
+    // p_S(x) at the prior mean (eq. 6); births exist with their own probability.
+    double p_exist = is_birth ? birth->existence : params_.survival_probability;
+    if (fov.enabled && !is_birth && !fov.contains(Tracks::moments(tracks_[r].density).mean)) {
+      p_exist = fov.outside_survival_probability;
+    }
+    Density predicted = is_birth ? tracks_model_.birth(birth->density)
+                                 : tracks_model_.predict(tracks_[r].density, motion_);
+    // p_D(x) at the predicted mean (eq. 8).
+    const bool detectable = !fov.enabled || fov.contains(Tracks::moments(predicted).mean);
+    const double p_d = detectable ? params_.detection_probability
+                                  : fov.outside_detection_probability;
+    f.candidates.push_back(tracks_model_.candidate(std::move(predicted), observation_, is_birth));
+    f.log_exists[r] = std::log(p_exist);
+    f.log_absent[r] = std::log1p(-p_exist);
+    f.log_missed[r] = std::log1p(-p_d) + tracks_model_.log_missed_likelihood(f.candidates.back());
+    tracks_model_.log_detection_likelihoods(f.candidates.back(), detections,
+                                            params_.gate_threshold, log_g);
+    const double log_pd_over_kappa = std::log(p_d) - log_kappa;
+    for (int j = 0; j < n_det; ++j) {
+      f.log_detected(r, j) = log_g[j] > -kInf ? log_pd_over_kappa + log_g[j] : -kInf;
+    }
+  }
+  return f;
+}
+
+template <class Tracks>
+int GlmbFilter<Tracks>::child_index(const ScanFactors& factors, Posterior& posterior, int row,
+                                    int detection,
+                                    const Eigen::Ref<const Eigen::MatrixXd>& detections) {
+  const auto key = std::make_pair(row, detection);
+  const auto found = posterior.child_of.find(key);
+  if (found != posterior.child_of.end()) return found->second;
+  Track child;
+  child.label = factors.labels[row];
+  child.density = detection < 0
+                      ? tracks_model_.missed(factors.candidates[row])
+                      : tracks_model_.detected(factors.candidates[row], detections.col(detection));
+  posterior.children.push_back(std::move(child));
+  posterior.child_detection.push_back(detection);
+  const int index = static_cast<int>(posterior.children.size()) - 1;
+  posterior.child_of.emplace(key, index);
+  return index;
+}
+
+template <class Tracks>
+Eigen::MatrixXd GlmbFilter<Tracks>::cost_matrix(const ScanFactors& f, const std::vector<int>& rows,
+                                                std::vector<int>& columns) const {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  // Only detections some row can take enter the matrix.
+  columns.clear();
+  for (Eigen::Index j = 0; j < f.log_detected.cols(); ++j) {
+    for (int r : rows) {
+      if (f.log_detected(r, j) > -kInf) {
+        columns.push_back(static_cast<int>(j));
+        break;
+      }
+    }
+  }
+  const int n = static_cast<int>(rows.size());
+  const int m = static_cast<int>(columns.size());
+  // Cost = -log of the factor each choice contributes to the posterior weight:
+  //   detection j:      p_exist p_D g(z_j|x) / kappa
+  //   missed (col m+i): p_exist (1 - p_D) <p, psi_missed>
+  //   absent (m+n+i):   1 - p_exist (died, or not born)
+  Eigen::MatrixXd cost = Eigen::MatrixXd::Constant(n, m + 2 * n, kInf);
+  for (int i = 0; i < n; ++i) {
+    const int r = rows[i];
+    for (int c = 0; c < m; ++c) cost(i, c) = -(f.log_exists[r] + f.log_detected(r, columns[c]));
+    cost(i, m + i) = -(f.log_exists[r] + f.log_missed[r]);
+    cost(i, m + n + i) = -f.log_absent[r];
+  }
+  return cost;
+}
+
+template <class Tracks>
+typename GlmbFilter<Tracks>::Posterior GlmbFilter<Tracks>::rank_hypotheses(
+    const ScanFactors& factors, const Eigen::Ref<const Eigen::MatrixXd>& detections) {
+  const int n_prior = static_cast<int>(tracks_.size());
+  const int n_birth = static_cast<int>(factors.candidates.size()) - n_prior;
+  // Requested solutions per prior hypothesis, proportional to sqrt(weight).
+  Eigen::VectorXd sqrt_w(hypotheses_.size());
+  for (std::size_t h = 0; h < hypotheses_.size(); ++h) {
+    sqrt_w[h] = std::exp(0.5 * hypotheses_[h].log_weight);
+  }
+  const double sqrt_total = sqrt_w.sum();
+  Posterior posterior;
+  auto add_hypothesis = [&](std::vector<int> tracks, double log_weight) {
+    std::sort(tracks.begin(), tracks.end());
+    auto [it, inserted] = posterior.weights.emplace(std::move(tracks), log_weight);
+    if (!inserted) {  // the same track histories reached from two parents: weights add
+      const double hi = std::max(it->second, log_weight);
+      it->second = hi + std::log(std::exp(it->second - hi) + std::exp(log_weight - hi));
+    }
+  };
+  std::vector<int> rows, columns, tracks;
+  for (std::size_t h = 0; h < hypotheses_.size(); ++h) {
+    const auto requested =
+        static_cast<std::int64_t>(std::round(params_.hypothesis_budget * sqrt_w[h] / sqrt_total));
+    if (requested < 1) continue;
+    rows.assign(hypotheses_[h].tracks.begin(), hypotheses_[h].tracks.end());
+    for (int b = 0; b < n_birth; ++b) rows.push_back(n_prior + b);
+    if (rows.empty()) {
+      add_hypothesis({}, hypotheses_[h].log_weight);
+      continue;
+    }
+    const Eigen::MatrixXd cost = cost_matrix(factors, rows, columns);
+    const int n = static_cast<int>(rows.size());
+    const int m = static_cast<int>(columns.size());
+    const RankedChoices ranked = rank(cost, requested);
+    for (Eigen::Index s = 0; s < ranked.costs.size(); ++s) {
+      tracks.clear();
+      for (int i = 0; i < n; ++i) {
+        const auto col = static_cast<int>(ranked.assignments(s, i));
+        if (col < m) {
+          tracks.push_back(child_index(factors, posterior, rows[i], columns[col], detections));
+        } else if (col < m + n) {
+          tracks.push_back(child_index(factors, posterior, rows[i], -1, detections));
+        }
+      }
+      add_hypothesis(tracks, hypotheses_[h].log_weight - ranked.costs[s]);
+    }
+  }
+  return posterior;
+}
+
+template <class Tracks>
+std::vector<typename GlmbFilter<Tracks>::Hypothesis> GlmbFilter<Tracks>::normalise_and_prune(
+    const Posterior& posterior) const {
+  std::vector<Hypothesis> updated;
+  updated.reserve(posterior.weights.size());
+  for (const auto& [tracks, log_weight] : posterior.weights) updated.push_back({tracks, log_weight});
+  auto normalise = [](std::vector<Hypothesis>& hs) {
+    Eigen::VectorXd lw(static_cast<Eigen::Index>(hs.size()));
+    for (std::size_t i = 0; i < hs.size(); ++i) lw[static_cast<Eigen::Index>(i)] = hs[i].log_weight;
+    const double total = core::log_sum_exp(lw);
+    for (auto& h : hs) h.log_weight -= total;
+  };
+  normalise(updated);
+  std::sort(updated.begin(), updated.end(),
+            [](const Hypothesis& a, const Hypothesis& b) { return a.log_weight > b.log_weight; });
+  const double log_prune = std::log(params_.prune_threshold);
+  std::size_t keep = 1;  // the best hypothesis always survives
+  while (keep < updated.size() && keep < static_cast<std::size_t>(params_.max_hypotheses) &&
+         updated[keep].log_weight >= log_prune) {
+    ++keep;
+  }
+  updated.resize(keep);
+  normalise(updated);
+  return updated;
+}
+
+template <class Tracks>
+void GlmbFilter<Tracks>::keep_used_tracks(std::vector<Hypothesis> hypotheses,
+                                          Posterior& posterior) {
+  std::vector<int> new_index(posterior.children.size(), -1);
+  tracks_.clear();
+  for (auto& h : hypotheses) {
+    for (int& t : h.tracks) {
+      if (new_index[t] < 0) {
+        new_index[t] = static_cast<int>(tracks_.size());
+        tracks_.push_back(std::move(posterior.children[t]));
+      }
+      t = new_index[t];
+    }
+    std::sort(h.tracks.begin(), h.tracks.end());
+  }
+  hypotheses_ = std::move(hypotheses);
+}
+
+template <class Tracks>
+typename GlmbFilter<Tracks>::RankedChoices GlmbFilter<Tracks>::rank(const Eigen::MatrixXd& cost,
+                                                                    std::int64_t requested) {
+  if (params_.ranking == HypothesisRanking::gibbs) {
+    assign::SampledAssignments s = assign::gibbs_assignments(cost, requested, ranking_rng_);
+    return {std::move(s.assignments), std::move(s.costs)};
+  }
+  assign::RankedAssignments r = assign::murty(cost, requested);
+  return {std::move(r.assignments), std::move(r.costs)};
+}
+
+template <class Tracks>
+void GlmbFilter<Tracks>::propose_adaptive_births(
+    const Eigen::Ref<const Eigen::MatrixXd>& detections, const Eigen::VectorXd& assigned) {
+  adaptive_births_.clear();
+  adaptive_birth_detections_.clear();
+  const auto& adaptive = params_.adaptive_birth;
+  if (!adaptive.enabled || detections.cols() == 0) return;
+  const Eigen::VectorXd unassigned = (1.0 - assigned.array()).max(0.0).matrix();
+  const double total = unassigned.sum();
+  if (!(total > 0.0)) return;
+  // H^+ = H^T (H H^T)^-1 maps a detection to the least-norm state that predicts it.
+  const Eigen::MatrixXd& H = observation_.H;
+  const Eigen::LDLT<Eigen::MatrixXd> HHt(H * H.transpose());
+  for (Eigen::Index j = 0; j < detections.cols(); ++j) {
+    const double r =
+        std::min(adaptive.max_existence, adaptive.expected_births * unassigned[j] / total);
+    // A detection that tracks explain almost surely would only add a row that stays absent.
+    if (r < 1e-12) continue;
+    adaptive_births_.push_back(
+        {r, {H.transpose() * HHt.solve(Eigen::VectorXd(detections.col(j))), adaptive.cov}});
+    adaptive_birth_detections_.push_back(static_cast<int>(j));
+  }
+}
+
+template <class Tracks>
+Eigen::VectorXd GlmbFilter<Tracks>::cardinality_distribution() const {
+  std::size_t largest = 0;
+  for (const auto& h : hypotheses_) largest = std::max(largest, h.tracks.size());
+  Eigen::VectorXd p = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(largest) + 1);
+  for (const auto& h : hypotheses_) {
+    p[static_cast<Eigen::Index>(h.tracks.size())] += std::exp(h.log_weight);
+  }
+  return p;
+}
+
+template <class Tracks>
+int GlmbFilter<Tracks>::map_cardinality() const {
+  Eigen::Index n = 0;
+  cardinality_distribution().maxCoeff(&n);
+  return static_cast<int>(n);
+}
+
+template <class Tracks>
+std::vector<GlmbEstimate> GlmbFilter<Tracks>::estimates() const {
+  const std::size_t n = static_cast<std::size_t>(map_cardinality());
+  const Hypothesis* best = nullptr;
+  for (const auto& h : hypotheses_) {
+    if (h.tracks.size() == n && (!best || h.log_weight > best->log_weight)) best = &h;
+  }
+  std::vector<GlmbEstimate> out;
+  if (!best) return out;
+  for (int t : best->tracks) {
+    models::GaussianDensity m = Tracks::moments(tracks_[t].density);
+    // The label's existence probability: the weight of the hypotheses that hold it (a hypothesis
+    // holds a label at most once).
+    double existence = 0.0;
+    for (const auto& h : hypotheses_) {
+      for (int u : h.tracks) {
+        if (tracks_[u].label == tracks_[t].label) existence += std::exp(h.log_weight);
+      }
+    }
+    out.push_back({tracks_[t].label, std::move(m.mean), std::move(m.cov), std::min(existence, 1.0)});
+  }
+  return out;
+}
+
+template <class Tracks>
+bool GlmbFilter<Tracks>::holds(const TrackLabel& label) const {
+  return std::any_of(tracks_.begin(), tracks_.end(),
+                     [&](const Track& t) { return t.label == label; });
+}
+
+}  // namespace vtrack::filters

@@ -1,0 +1,154 @@
+#include "vtrack/apps/config.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <yaml-cpp/yaml.h>
+
+#include "vtrack/core/errors.hpp"
+
+namespace vtrack::apps {
+namespace {
+
+std::string at(const std::string& path, const YAML::Node& node) {
+  return path + ": line " + std::to_string(node.Mark().line + 1) + ": ";
+}
+
+// The deepest nesting of [ ] and { } outside quoted strings.
+int flow_nesting(const std::string& text) {
+  int depth = 0, deepest = 0;
+  char quote = 0;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (quote) {
+      if (c == '\\' && quote == '"') ++i;
+      else if (c == quote) quote = 0;
+      continue;
+    }
+    if (c == '"' || c == '\'') quote = c;
+    else if (c == '[' || c == '{') deepest = std::max(deepest, ++depth);
+    else if (c == ']' || c == '}') depth = std::max(0, depth - 1);
+  }
+  return deepest;
+}
+
+core::ParameterValue scalar_value(const std::string& where, const std::string& name,
+                                  const YAML::Node& node) {
+  if (node.IsNull()) throw InvalidArgument(where + "parameter " + name + " has no value");
+  if (node.IsSequence()) {
+    std::vector<double> reals;
+    for (const auto& item : node) {
+      const core::ParameterValue v = item.IsScalar() && item.Tag() != "!"
+                                         ? core::parse_parameter_text(item.Scalar())
+                                         : core::ParameterValue(std::string());
+      if (std::holds_alternative<std::string>(v) || std::holds_alternative<bool>(v) ||
+          std::holds_alternative<std::vector<double>>(v)) {
+        throw InvalidArgument(where + "parameter " + name + " must be a list of numbers");
+      }
+      reals.push_back(core::real_value(name, v));
+    }
+    return reals;
+  }
+  if (!node.IsScalar()) {
+    throw InvalidArgument(where + "parameter " + name +
+                          " must be a number, true/false, a name or a list of numbers");
+  }
+  // A quoted scalar ("0.1", 'abc') is a name, never a number: YAML and JSON both say so.
+  if (node.Tag() == "!") return node.Scalar();
+  const std::string& text = node.Scalar();
+  if (text == "True" || text == "TRUE") return true;
+  if (text == "False" || text == "FALSE") return false;
+  const core::ParameterValue v = core::parse_parameter_text(text);
+  if (std::holds_alternative<std::vector<double>>(v)) return text;  // "1,2" unquoted: a name
+  return v;
+}
+
+std::uint64_t seed_from(const std::string& where, const YAML::Node& node) {
+  const core::ParameterValue v =
+      node.IsScalar() && node.Tag() != "!" ? core::parse_parameter_text(node.Scalar())
+                                           : core::ParameterValue(std::string("?"));
+  try {
+    return core::seed_value("seed", v);
+  } catch (const InvalidArgument& e) {
+    throw InvalidArgument(where + e.what());
+  }
+}
+
+YAML::Node load(const std::string& path) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) {
+    throw IoError("no such config file: '" + path + "'");
+  }
+  const auto size = std::filesystem::file_size(path, error);
+  if (error || size > kMaxConfigBytes) {
+    throw IoError("config file '" + path + "' is larger than " + std::to_string(kMaxConfigBytes) +
+                  " bytes");
+  }
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  if (!in && !in.eof()) throw IoError("cannot read config file '" + path + "'");
+  const std::string text = buffer.str();
+  if (flow_nesting(text) > kMaxConfigNesting) {
+    throw IoError("cannot parse config file '" + path + "': nested deeper than " +
+                  std::to_string(kMaxConfigNesting) + " levels");
+  }
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw IoError("cannot parse config file '" + path + "': line " +
+                  std::to_string(e.mark.line + 1) + ", column " +
+                  std::to_string(e.mark.column + 1) + ": " + e.msg);
+  }
+}
+
+}  // namespace
+
+const ParameterValues& Config::section(const std::string& name) const {
+  static const ParameterValues none;
+  for (const auto& [section_name, values] : sections) {
+    if (section_name == name) return values;
+  }
+  return none;
+}
+
+Config read_config(const std::string& path) {
+  const YAML::Node root = load(path);
+  Config config;
+  config.path = path;
+  if (root.IsNull()) return config;  // an empty file sets nothing
+  if (!root.IsMap()) {
+    throw InvalidArgument(at(path, root) + "a config file must be a map of sections");
+  }
+  std::set<std::string> seen;
+  for (const auto& item : root) {
+    const std::string key = item.first.Scalar();
+    if (!seen.insert(key).second) {
+      throw InvalidArgument(at(path, item.first) + "'" + key + "' appears twice");
+    }
+    if (key == "seed") {
+      config.seed = seed_from(at(path, item.second), item.second);
+      continue;
+    }
+    if (item.second.IsNull()) continue;  // "tracker:" with nothing under it
+    if (!item.second.IsMap()) {
+      throw InvalidArgument(at(path, item.second) + "section '" + key + "' must be a map");
+    }
+    ParameterValues values;
+    std::set<std::string> names;
+    for (const auto& parameter : item.second) {
+      const std::string name = parameter.first.Scalar();
+      if (!names.insert(name).second) {
+        throw InvalidArgument(at(path, parameter.first) + "parameter '" + name +
+                              "' appears twice in section '" + key + "'");
+      }
+      values.emplace_back(name, scalar_value(at(path, parameter.second), name, parameter.second));
+    }
+    config.sections.emplace_back(key, std::move(values));
+  }
+  return config;
+}
+
+}  // namespace vtrack::apps

@@ -1,0 +1,21 @@
+"""Multi-object trackers (the C++ ``filters`` layer), one surface for all of them.
+
+Every tracker is built with keyword parameters that have the papers' defaults
+(``Tracker.default_params()``; ``tracker.params`` gives the values in force; an unknown or
+wrongly typed keyword is a ``TypeError`` naming it), and ``step`` returns a :class:`Tracks`:
+``ids`` (int64, stable for a track's life), ``boxes`` (N x 4 x, y, w, h), ``scores``, and the
+filter's own extras (``states``, ``covariances``, GLMB ``labels``).
+:func:`vtrack.io.mot_rows` turns any of them into MOTChallenge rows.
+
+=========================  ===============================================  =====================
+tracker                    built with                                       step(...)
+=========================  ===============================================  =====================
+MultiBernoulliTracker      ``(image_size, **params)``                       ``y`` (H x W float32)
+BoxTracker                 ``(image_size, **params)``                       ``boxes`` (M x 4 or 5)
+GlmbTracker                ``(motion, observation, births, **params)``      ``detections`` (M x z)
+=========================  ===============================================  =====================
+"""
+
+from ._core import BernoulliComponent, BoxTracker, GlmbTracker, MultiBernoulliTracker, Tracks
+
+__all__ = ["BernoulliComponent", "BoxTracker", "GlmbTracker", "MultiBernoulliTracker", "Tracks"]
