@@ -21,6 +21,11 @@ change on this shared machine hits all of them alike):
 - Dask per task: round trip of a no-op task (submit, schedule, run on a worker, gather), median
   per task over 200 tasks on 1 worker, against the tracking time of one 100-frame vtest clip.
 
+Besides wall time, each row has the CPU seconds it cost: this process (the client, the scheduler,
+the sequential loops) plus every worker process (getrusage; the idle cluster's heartbeats are in
+every row). On a machine other jobs load, wall time measures the share of the cores this run got;
+the CPU column measures what Dask adds to the work itself.
+
 The bar (issue 15): 2 workers >= 1.8x the sequential throughput; Dask's per-task overhead < 1 % of
 a 100-frame clip's tracking time.
 
@@ -32,6 +37,7 @@ from __future__ import annotations
 import argparse
 import logging
 import os
+import resource
 import shutil
 import sys
 import tempfile
@@ -146,10 +152,28 @@ CONFIGS = (("sequential loop (track_video + write_mot), KDE 1 thread", "seq"),
            ("batch, 1 worker", 1), ("batch, 2 workers", 2))
 
 
+def _cpu_seconds() -> float:
+    """User + system CPU time of this process so far (all its threads)."""
+    usage = resource.getrusage(resource.RUSAGE_SELF)
+    return usage.ru_utime + usage.ru_stime
+
+
+def cpu_of(run, clients):
+    """(wall seconds of run(), CPU seconds it cost): this process's (the client, and the local
+    clusters' schedulers, which run in it) plus every worker process's. The nannies' small
+    share is not counted."""
+    def workers():
+        return sum(sum(c.run(_cpu_seconds).values()) for c in clients.values())
+
+    before = _cpu_seconds() + workers()
+    wall = run()
+    return wall, _cpu_seconds() + workers() - before
+
+
 def measure_rounds(clips, work: Path, clients, repeats: int):
-    """{config: [seconds per round]}, and the 1-min load at the start of each configuration. The
-    order of the configurations turns by one each round, so a load that rises or falls during a
-    round does not always hit the same one."""
+    """({config: [wall seconds per round]}, {config: [CPU seconds per round]}), and the 1-min load
+    at the start of each configuration. The order of the configurations turns by one each round,
+    so a load that rises or falls during a round does not always hit the same one."""
     runners = {"seq": lambda out: sequential(clips, out, threads=1),
                "seq-threads": lambda out: sequential(clips, out, threads=None),
                "task": lambda out: task_loop(clips, out),
@@ -157,29 +181,34 @@ def measure_rounds(clips, work: Path, clients, repeats: int):
                2: lambda out: batched(clips, out, clients[2])}
     keys = [key for _, key in CONFIGS]
     times = {key: [] for key in keys}
+    cpu = {key: [] for key in keys}
     loads = []
     for r in range(repeats):
         out = work / f"round{r}"
         for key in keys[r % len(keys):] + keys[:r % len(keys)]:
             (out / str(key)).mkdir(parents=True)
             loads.append(os.getloadavg()[0])
-            times[key].append(runners[key](out / str(key)))
+            wall, used = cpu_of(lambda: runners[key](out / str(key)), clients)
+            times[key].append(wall)
+            cpu[key].append(used)
         for path, _ in clips:  # the batch wrote what the plain loop wrote
             tracks = (out / "2" / path.stem / "tracks.txt").read_bytes()
             if tracks != (out / "seq" / f"{path.stem}.txt").read_bytes():
                 raise SystemExit(f"batch tracks of {path.stem} differ from the sequential loop's")
         shutil.rmtree(out)
-    return times, loads
+    return times, cpu, loads
 
 
-def report(times, frames: int, n_tasks: int, overheads: dict, loads) -> None:
+def report(times, cpu, frames: int, n_tasks: int, overheads: dict, loads) -> None:
     seq, task = median(times["seq"]), median(times["task"])
+    seq_cpu = median(cpu["seq"])
     rows = []
     for label, key in CONFIGS:
-        t = median(times[key])
-        rows.append([label, f"{t:.2f}", f"{frames / t:.1f}", f"{seq / t:.2f}x", f"{task / t:.2f}x"])
+        t, c = median(times[key]), median(cpu[key])
+        rows.append([label, f"{t:.2f}", f"{frames / t:.1f}", f"{seq / t:.2f}x", f"{task / t:.2f}x",
+                     f"{c:.2f}", f"{c / seq_cpu:.3f}x"])
     print_table(["configuration", "seconds (median)", "frames/s", "vs sequential loop",
-                 "vs task loop"], rows)
+                 "vs task loop", "CPU seconds (median)", "CPU vs sequential"], rows)
     speedup = seq / median(times[2])
     print(f"\nbar: 2 workers >= {BAR_SPEEDUP}x sequential: {speedup:.2f}x -> "
           f"{'PASS' if speedup >= BAR_SPEEDUP else 'FAIL'}\n")
@@ -228,7 +257,7 @@ def main() -> int:
         for client in clients.values():  # every worker imports vtrack before the clock starts
             client.run(lambda: __import__("vtrack.batch"))
         overheads = {"start": (time.perf_counter() - start) / 2}
-        times, loads = measure_rounds(clips, work, clients, repeats)
+        times, cpu, loads = measure_rounds(clips, work, clients, repeats)
         overheads["noop"], overheads["noop_serial"] = dask_task_overhead(clients[1])
         clip = clips[0][0]  # a 100-frame vtest clip
         overheads["track"] = median(_timed(lambda: vtrack.track_video(
@@ -239,7 +268,7 @@ def main() -> int:
             cluster.close()
     finally:
         shutil.rmtree(work, ignore_errors=True)
-    report(times, frames, len(clips), overheads, loads)
+    report(times, cpu, frames, len(clips), overheads, loads)
     return 0
 
 
