@@ -143,7 +143,8 @@ def dask_task_overhead(client, n=200):
 
 def load_text():
     one, five, fifteen = os.getloadavg()
-    return f"load average {one:.2f} / {five:.2f} / {fifteen:.2f} (1 / 5 / 15 min) on {os.cpu_count()} cores"
+    return (f"load average {one:.2f} / {five:.2f} / {fifteen:.2f} (1 / 5 / 15 min) on "
+            f"{os.cpu_count()} cores")
 
 
 CONFIGS = (("sequential loop (track_video + write_mot), KDE 1 thread", "seq"),

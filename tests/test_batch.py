@@ -142,7 +142,8 @@ def test_batch_equals_sequential_cli_and_reports_bad_inputs(data, references, cl
         expected_sections["background"]["threads"] = 1  # the batch's one thread per worker
         assert run["parameters"]["parameters"] == json.loads(json.dumps(expected_sections))
         assert run["parameters"]["method"] == "mb"
-        assert run["input"] == str(root / ("frames/s3/img1" if name == "s3" else f"clips/{name}.avi"))
+        where = "frames/s3/img1" if name == "s3" else f"clips/{name}.avi"
+        assert run["input"] == str(root / where)
     # The tracker found people (the comparison above is not of empty files).
     assert float(by_name["s1"]["MOTA"]) > 0.3, by_name["s1"]
     for name, message in (("corrupt", "frame"), ("missing", "no such file")):
@@ -317,7 +318,8 @@ def test_ctrl_c_leaves_whole_files_and_the_cli_rerun_finishes(client, vtrack_cli
     assert {r[1] for r in summary[1:] if r[2] == "ok"} == done
     before = _mtimes(out)
 
-    args[args.index("--workers"):args.index("--workers") + 2] = ["--scheduler", client.scheduler.address]
+    at = args.index("--workers")
+    args[at:at + 2] = ["--scheduler", client.scheduler.address]
     result = vtrack_cli("batch", *args)
     assert result.returncode == 1, result.stderr
     assert "missing" in result.stderr
@@ -384,7 +386,8 @@ def test_cli_hands_batch_to_python(vtrack_cli, data, tmp_path):
     assert help_text.returncode == 0 and help_text.stdout.startswith("usage: vtrack batch")
     assert "--scheduler" in help_text.stdout
     result = vtrack_cli("batch", video, "--out", out, "--set", "no_such=1")
-    assert result.returncode == 2 and "vtrack: error: " in result.stderr and "no_such" in result.stderr
+    assert result.returncode == 2 and "vtrack: error: " in result.stderr
+    assert "no_such" in result.stderr
     env = dict(os.environ, VTRACK_PYTHON=str(tmp_path / "no-python"))
     exe = Path(sys.executable).parent / "vtrack"
     result = subprocess.run([exe, "batch", video, "--out", out], capture_output=True, text=True,

@@ -23,10 +23,11 @@ names     results go to ``DIR/<name>/``: a video's file stem, an image folder's 
           separates them). The rule depends on the set of inputs, not on their order.
 outputs   ``tracks.txt`` (MOTChallenge), ``render.mp4`` (--render), ``run.json`` (input,
           method, detector, every parameter in force, vtrack version, seed, frames, seconds,
-          fps, status, error, metrics, worker), and ``DIR/summary.csv`` (``input,name,status,frames,seconds,fps,error`` and, with --gt,
-          ``HOTA,MOTA,IDF1``; one row per finished input, in input order), rewritten as results
-          arrive (at most once a second, and at the end). Every file is written under a temporary
-          name and renamed when whole.
+          fps, status, error, metrics, worker), and ``DIR/summary.csv``
+          (``input,name,status,frames,seconds,fps,error`` and, with --gt, ``HOTA,MOTA,IDF1``; one
+          row per finished input, in input order), rewritten as results arrive (at most once a
+          second, and at the end). Every file is written under a temporary name and renamed when
+          whole.
 complete  an input is complete when its ``run.json`` says ``ok`` for the same input path and the
           same parameters and its outputs are there. The worker renames ``tracks.txt`` (and the
           render) into place, then the client writes ``run.json``, last. A re-run skips complete
@@ -240,9 +241,8 @@ def make_job(method: str = "mb", detector: Optional[str] = None, config: Optiona
                                    **params)
     except OSError as err:  # an unreadable or unparsable config file
         raise UsageError(str(err)) from None
-    defaults = pipeline_params(method, detector=detector)
     background = sections.get("background")
-    if background is not None and background.get("threads") == defaults["background"]["threads"] == 0:
+    if background is not None and background.get("threads") == 0:  # 0: the default
         background["threads"] = 1
     job = {"method": method, "detector": detector, "parameters": sections, "render": bool(render)}
     return json.loads(json.dumps(job))  # as it will read back from run.json
@@ -301,7 +301,8 @@ def run_input(path: str, folder: str, job: Dict[str, Any], gt_path: Optional[str
              "vtrack_version": vtrack.__version__}
     # A render name of this attempt's own: a stray earlier attempt (a worker presumed dead that
     # still runs) cannot write into the file this one renames.
-    render = str(out / f".render.{uuid.uuid4().hex[:12]}{Path(RENDER).suffix}") if job["render"] else None
+    render = (str(out / f".render.{uuid.uuid4().hex[:12]}{Path(RENDER).suffix}")
+              if job["render"] else None)
     start = time.perf_counter()
     try:
         rows, frames = _track_one(path, job, render)
@@ -321,7 +322,7 @@ def run_input(path: str, folder: str, job: Dict[str, Any], gt_path: Optional[str
             "metrics": metrics, **where}
 
 
-# ---- the client's bookkeeping ----------------------------------------------------------------------
+# ---- the client's bookkeeping ------------------------------------------------------------------
 
 
 def _write_json(path: Path, data: dict) -> None:
@@ -471,7 +472,8 @@ def _start_cluster(workers: Optional[int], scheduler: Optional[str], quiet: bool
             raise OSError(f"cannot reach the Dask scheduler at {scheduler}: {err}") from None
     dashboard = ":8787" if _has_bokeh() else ":0"  # without bokeh: a bare HTTP server, any port
     if workers is None:
-        workers = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
+        workers = (len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity")
+                   else os.cpu_count())
     cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
                            dashboard_address=dashboard,
                            silence_logs=logging.ERROR if quiet else logging.WARNING)
