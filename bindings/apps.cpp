@@ -1,6 +1,7 @@
 // Bindings of vtrack::apps: video input, configuration files and the video pipelines.
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <pybind11/stl/filesystem.h>
 
@@ -67,6 +68,26 @@ void apply_python_config(apps::PipelineParams& params, const py::dict& config) {
   }
 }
 
+// The pipeline's parameters from a config (Python sections), keywords and `--set name=value`
+// texts, in that order of precedence (lowest first), as `vtrack track` resolves them.
+apps::PipelineParams pipeline_params(const std::string& method, const std::string& detector,
+                                     const py::dict& config, const py::dict& params,
+                                     const std::vector<std::string>& settings) {
+  apps::PipelineParams p;
+  p.method = method;
+  p.detector = detector;
+  apps::validate(p);  // the method and detector, before names are looked up in them
+  apply_python_config(p, config);
+  for (const auto& item : params) {
+    set_from_python(p, "", py::str(item.first).cast<std::string>(), item.second);
+  }
+  for (const auto& setting : settings) {
+    const auto [name, value] = core::parse_setting(setting);
+    apps::set_pipeline_parameter(p, name, value);
+  }
+  return p;
+}
+
 py::dict config_dict(const apps::Config& config) {
   py::dict d;
   if (config.seed) d["seed"] = py::int_(*config.seed);
@@ -121,18 +142,32 @@ and ValueError for a malformed document.
 )doc");
 
   m.def(
+      "pipeline_params",
+      [](const std::string& method, const std::string& detector, const py::dict& config,
+         const py::dict& params, const std::vector<std::string>& settings) {
+        const apps::PipelineParams p = pipeline_params(method, detector, config, params, settings);
+        apps::validate(p);
+        py::dict out;
+        for (const auto& section : apps::pipeline_sections(p)) {
+          py::dict values;
+          for (const auto& [name, value] : section.values) {
+            values[name.c_str()] = parameter_to_python(value);
+          }
+          out[section.name.c_str()] = values;
+        }
+        return out;
+      },
+      py::arg("method"), py::arg("detector"), py::arg("config"), py::arg("params"),
+      py::arg("settings"),
+      "The compiled half of vtrack.pipelines.pipeline_params (use that): every section's "
+      "parameters.");
+
+  m.def(
       "track_video",
       [](const std::filesystem::path& video, const std::string& method,
          const std::string& detector, const py::dict& config, const py::dict& params,
          const std::optional<std::filesystem::path>& render, const py::object& progress) {
-        apps::PipelineParams p;
-        p.method = method;
-        p.detector = detector;
-        apps::validate(p);  // the method and detector, before names are looked up in them
-        apply_python_config(p, config);
-        for (const auto& item : params) {
-          set_from_python(p, "", py::str(item.first).cast<std::string>(), item.second);
-        }
+        const apps::PipelineParams p = pipeline_params(method, detector, config, params, {});
         const apps::FrameProgress report = progress_callback(progress);
         apps::PipelineResult result;
         {

@@ -144,6 +144,52 @@ def test_config_files_round_trip_and_the_cli_reads_the_same(method, tmp_path, vt
                 assert effective[section][key] == pytest.approx(value), (section, key)
 
 
+def setting_text(value):
+    """A parameter value as `--set name=value` writes it."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (tuple, list)):
+        return ",".join(repr(float(v)) for v in value)
+    return repr(value) if isinstance(value, float) else str(value)
+
+
+@pytest.mark.parametrize("method", SECTIONS)
+def test_pipeline_params_resolve_as_vtrack_params(method, tmp_path, vtrack_cli):
+    """pipeline_params gives what `vtrack params` prints for the same config, seed and --set
+    (every parameter changed, so no value can pass by being a default), with the CLI's
+    precedence: config < keywords (--seed) < settings (--set)."""
+    detector = ["--detector", "hog"] if method == "glmb" else []
+    config = tmp_path / "config.json"
+    config.write_text(json.dumps({"seed": 5}))
+    changed = {}
+    for cls in SECTIONS[method].values():
+        changed.update(changed_params(cls))
+    changed.pop("seed", None)
+    settings = [f"{k}={setting_text(v)}" for k, v in changed.items()]
+    cli = vtrack_cli("params", "--method", method, *detector, "--config", config, "--seed", 6,
+                     *[a for s in settings for a in ("--set", s)])
+    assert cli.returncode == 0, cli.stderr
+    expected = json.loads(cli.stdout)
+    found = vtrack.pipelines.pipeline_params(method, detector=detector[-1] if detector else None,
+                                             config=config, settings=settings, seed=6)
+    assert set(found) == set(expected)
+    for section, values in expected.items():
+        assert set(found[section]) == set(values), section
+        for key, value in values.items():
+            got = found[section][key]
+            assert (list(got) if isinstance(got, tuple) else got) == value, (section, key)
+    assert found["tracker"]["seed"] == 6
+    assert vtrack.pipelines.pipeline_params(method, detector=detector[-1] if detector else None,
+                                            config=config, settings=["seed=7"],
+                                            seed=6)["tracker"]["seed"] == 7
+    with pytest.raises(ValueError, match="name=value"):
+        vtrack.pipelines.pipeline_params("mb", settings=["=1"])
+    with pytest.raises(TypeError, match="did you mean 'delta_f'"):
+        vtrack.pipelines.pipeline_params("mb", settings=["delta_ff=1"])
+    with pytest.raises(TypeError, match="settings"):
+        vtrack.pipelines.pipeline_params("mb", settings="delta_f=1")
+
+
 def test_load_config_errors_name_the_problem(tmp_path):
     with pytest.raises(OSError, match="no such config file"):
         vtrack.load_config(tmp_path / "none.yml")

@@ -15,6 +15,7 @@
 
 #include <unistd.h>
 
+#include "batch_handoff.hpp"
 #include "vtrack/apps/background_subtraction.hpp"
 #include "vtrack/apps/config.hpp"
 #include "vtrack/apps/mot_files.hpp"
@@ -132,15 +133,6 @@ std::string walk_arguments(const std::string& command, const std::vector<std::st
   return input;
 }
 
-// `--set name=value` split into the name and its value (core::parse_parameter_text).
-std::pair<std::string, vtrack::core::ParameterValue> parse_setting(const std::string& setting) {
-  const std::size_t eq = setting.find('=');
-  if (eq == std::string::npos || eq == 0) {
-    throw UsageError("--set expects name=value, got '" + setting + "'");
-  }
-  return {setting.substr(0, eq), vtrack::core::parse_parameter_text(setting.substr(eq + 1))};
-}
-
 // Runs `assemble` on parameters from the command line: a value the library rejects is a usage
 // error (exit 2), as a malformed command line is.
 template <typename Assemble>
@@ -187,7 +179,7 @@ int run_bgs(const std::vector<std::string>& args) {
   }
   as_usage([&] {
     for (const auto& setting : settings) {
-      const auto [name, value] = parse_setting(setting);
+      const auto [name, value] = vtrack::core::parse_setting(setting);
       vtrack::core::set_parameters(params, {{name, value}}, "background");
     }
     vtrack::image::validate(params);
@@ -258,7 +250,7 @@ vtrack::apps::PipelineParams track_params(const TrackOptions& o) {
   as_usage([&] {
     if (o.seed) vtrack::apps::set_pipeline_parameter(params, "seed", *o.seed);
     for (const auto& setting : o.settings) {
-      const auto [name, value] = parse_setting(setting);
+      const auto [name, value] = vtrack::core::parse_setting(setting);
       vtrack::apps::set_pipeline_parameter(params, name, value);
     }
     if (o.method == "glmb" && o.detector.empty()) {
@@ -391,6 +383,12 @@ int run_track(const std::vector<std::string>& args) {
   return 0;
 }
 
+// `vtrack batch` is Python (vtrack.batch, on Dask): this execs the interpreter vtrack is
+// installed in and returns only when there is none.
+int run_batch(const std::vector<std::string>& args) {
+  throw UsageError(vtrack::cli::exec_python_batch(args));
+}
+
 const std::vector<Command>& commands() {
   static const std::vector<Command> table = {
       {"info", "print frame count, frame size and frame rate of a video or image folder",
@@ -444,6 +442,8 @@ const std::vector<Command>& commands() {
        "  Resolves the defaults, the config file, --seed and --set exactly as `vtrack track`\n"
        "  does and prints the result: each section of the method with every parameter.",
        run_params},
+      {"batch", "track many videos at once on Dask, locally or on a cluster (vtrack.batch)",
+       "vtrack batch INPUTS... --out DIR [options]   (vtrack batch --help lists them)", run_batch},
   };
   return table;
 }
@@ -477,7 +477,7 @@ int main(int argc, char** argv) {
     for (const auto& command : commands()) {
       if (first != command.name) continue;
       std::vector<std::string> rest(args.begin() + 1, args.end());
-      if (wants_help(rest)) {
+      if (wants_help(rest) && std::string(command.name) != "batch") {  // batch: Python's help
         std::cout << "usage: " << command.usage << "\n\n" << command.summary << "\n";
         return 0;
       }

@@ -411,6 +411,13 @@ class VideoInfo:
 def probe_video(path: Union[str, PathLike[str]]) -> VideoInfo: ...
 
 def load_config(path: Union[str, PathLike[str]]) -> Dict[str, Any]: ...
+def pipeline_params(
+    method: str,
+    detector: str,
+    config: Dict[str, Any],
+    params: Dict[str, Any],
+    settings: List[str],
+) -> Dict[str, Dict[str, Any]]: ...
 def track_video(
     video: Union[str, PathLike[str]],
     method: str,

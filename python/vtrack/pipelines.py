@@ -18,7 +18,7 @@ from __future__ import annotations
 import os
 import sys
 import time
-from typing import Any, Callable, Dict, Mapping, Optional, Tuple, Union
+from typing import Any, Callable, Dict, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -29,7 +29,7 @@ Progress = Union[bool, Callable[[int, int], None], None]
 
 METHODS = ("mb", "glmb")
 
-__all__ = ["METHODS", "track_detections", "track_video"]
+__all__ = ["METHODS", "pipeline_params", "track_detections", "track_video"]
 
 
 class _ProgressLine:
@@ -95,6 +95,26 @@ def _config_sections(config: Union[None, PathLike, Mapping[str, Any]]) -> Dict[s
     if isinstance(config, Mapping):
         return dict(config)
     raise TypeError(f"config must be a path or a dict of sections, got {type(config).__name__}")
+
+
+def pipeline_params(method: str = "mb", *, detector: Optional[str] = None,
+                    config: Union[None, PathLike, Mapping[str, Any]] = None,
+                    settings: Sequence[str] = (), **params: Any) -> Dict[str, Dict[str, Any]]:
+    """The parameters :func:`track_video` would run with, as ``vtrack params`` prints them: every
+    section of the method (``{"background": {...}, "tracker": {...}}`` for mb) with every
+    parameter, the tracker's ``seed`` included.
+
+    Precedence, lowest first: the defaults, ``config`` (a file or sections), keyword ``params``,
+    then ``settings``, texts ``"name=value"`` read as ``vtrack track --set`` reads them (the
+    C++ parser: true/false, an integer, a real, a comma-separated list of reals, else a name).
+    The result passed back as ``config`` gives the same run. Raises TypeError for an unknown
+    name or a value of the wrong type, ValueError for a value out of range or a malformed
+    setting.
+    """
+    if isinstance(settings, str):
+        raise TypeError("settings must be a sequence of 'name=value' strings, not one string")
+    return _core.pipeline_params(method, detector or "", _config_sections(config), params,
+                                 list(settings))
 
 
 def track_video(video: PathLike, method: str = "mb", *, detector: Optional[str] = None,

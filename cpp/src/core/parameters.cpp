@@ -124,6 +124,14 @@ ParameterValue parse_parameter_text(const std::string& text) {
   return text;
 }
 
+std::pair<std::string, ParameterValue> parse_setting(const std::string& setting) {
+  const std::size_t eq = setting.find('=');
+  if (eq == std::string::npos || eq == 0) {
+    throw InvalidArgument("--set expects name=value, got '" + setting + "'");
+  }
+  return {setting.substr(0, eq), parse_parameter_text(setting.substr(eq + 1))};
+}
+
 double real_value(const std::string& name, const ParameterValue& v) {
   if (const auto* d = std::get_if<double>(&v)) return *d;
   if (const auto* i = std::get_if<std::int64_t>(&v)) return static_cast<double>(*i);

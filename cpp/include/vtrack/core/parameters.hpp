@@ -43,6 +43,10 @@ std::string to_text(const ParameterValue& value);
 // of reals, otherwise a name.
 ParameterValue parse_parameter_text(const std::string& text);
 
+// `name=value` as `--set` gives it: the name and parse_parameter_text(value). InvalidArgument
+// "--set expects name=value, got '<setting>'" without an '=' or a name.
+std::pair<std::string, ParameterValue> parse_setting(const std::string& setting);
+
 // Conversions of a value to a field's type. InvalidArgument "parameter <name> must be <kind>,
 // got <value>" when the value is of another kind (an integer is accepted as a real; a real is
 // never silently truncated to an integer; integers are range-checked before narrowing).
