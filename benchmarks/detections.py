@@ -272,7 +272,9 @@ def main(argv=None) -> int:
                 stem = f"set{index}_{short or name.replace(' ', '').replace(',', '_').lower()}"
                 write_mot(os.path.join(args.out_dir, stem + ".txt"), tracks)
         if args.out_dir and label.startswith("(b)"):
-            write_mot(os.path.join(args.out_dir, "hog_det.txt"), det)
+            # A det file (id -1, which write_mot, a track writer, rejects); --hog-dets reads it.
+            np.savetxt(os.path.join(args.out_dir, "hog_det.txt"), det, delimiter=",",
+                       fmt=["%d", "%d", "%.3f", "%.3f", "%.3f", "%.3f", "%.5f", "%d", "%d", "%d"])
         if have_sort:
             for rng, _, _ in RANGES:
                 a, b = results["vtrack GLMB"][rng], results["SORT"][rng]

@@ -8,6 +8,10 @@
 
 namespace vtrack::core {
 
+// The standard normal quantile Phi^-1(p), p in (0, 1) (Acklam's rational approximation refined by
+// one Halley step on erfc: relative error below 1e-12). InvalidArgument outside (0, 1).
+double normal_quantile(double p);
+
 class Gaussian {
  public:
   Gaussian(Eigen::VectorXd mean, const Eigen::MatrixXd& covariance);
