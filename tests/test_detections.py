@@ -385,3 +385,13 @@ def test_a_frame_with_tens_of_thousands_of_boxes_has_a_bounded_cost():
     out = vtrack.track_detections(rows, image_size=(640, 480), max_births=20)
     per_frame = np.bincount(out[:, 0].astype(int), minlength=6)
     assert per_frame[3] <= 3 + 20
+
+
+def test_a_learnt_detection_probability_starts_within_its_bounds():
+    with pytest.raises(ValueError, match="detection_probability"):
+        vtrack.BoxTracker((640, 480), detection_probability=0.99)
+    with pytest.raises(ValueError, match="detection_probability_min"):
+        vtrack.BoxTracker((640, 480), detection_probability_min=0.9, detection_probability_max=0.5)
+    fixed = vtrack.BoxTracker((640, 480), detection_probability=0.99,
+                              learn_detection_probability=False)
+    assert fixed.params["detection_probability"] == 0.99

@@ -85,13 +85,17 @@ void validate(const BoxTrackerParams& p) {
   validate(p.management);
   validate(p.occlusion);
   validate(p.estimator);
+  // The learning bounds hold the learnt p_D; a fixed p_D (no learning) may lie outside them.
   require(p.detection_probability_min > 0 &&
-              p.detection_probability_min <= p.detection_probability &&
-              p.detection_probability <= p.detection_probability_max &&
+              p.detection_probability_min <= p.detection_probability_max &&
               p.detection_probability_max < 1,
           "detection_probability_min", p.detection_probability_min,
-          "0 < detection_probability_min <= detection_probability <= "
-          "detection_probability_max < 1");
+          "0 < detection_probability_min <= detection_probability_max < 1");
+  require(!p.learn_detection_probability ||
+              (p.detection_probability >= p.detection_probability_min &&
+               p.detection_probability <= p.detection_probability_max),
+          "detection_probability", p.detection_probability,
+          "within [detection_probability_min, detection_probability_max] when learnt");
   require(p.learning_memory >= 1 && std::isfinite(p.learning_memory), "learning_memory",
           p.learning_memory, ">= 1 and finite");
   require(p.learning_prior_weight > 0 && std::isfinite(p.learning_prior_weight),
@@ -192,7 +196,10 @@ BoxTracker::BoxTracker(int width, int height, const BoxTrackerParams& params)
       clutter_(width, height,
                {params.clutter_rate, params.duplicate_rate,
                 {params.learning_memory, params.learning_prior_weight}}),
-      detection_probability_(params.detection_probability, params.detection_probability_min,
+      detection_probability_(std::clamp(params.detection_probability,
+                                        params.detection_probability_min,
+                                        params.detection_probability_max),
+                             params.detection_probability_min,
                              params.detection_probability_max,
                              {params.learning_memory, params.learning_prior_weight}),
       score_model_(params.score_window, params.learning_prior_weight, params.learning_memory) {}
