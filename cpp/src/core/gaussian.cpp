@@ -8,11 +8,6 @@
 #include "vtrack/core/errors.hpp"
 
 namespace vtrack::core {
-namespace {
-
-constexpr double kLog2Pi = 1.8378770664093454835606594728112;
-
-}  // namespace
 
 double normal_quantile(double p) {
   require(p > 0.0 && p < 1.0, "p", p, "in (0, 1)");

@@ -18,8 +18,6 @@ void check(const Forgetting& f) {
           "> 0 and finite");
 }
 
-constexpr double kLog2Pi = 1.8378770664093454835606594728112;
-
 }  // namespace
 
 ClutterRate::ClutterRate(double prior_rate, Forgetting forgetting)
@@ -105,7 +103,7 @@ Eigen::VectorXd WeightedGaussian::log_density(const Eigen::Ref<const Eigen::Matr
   Eigen::LLT<Eigen::MatrixXd> llt(covariance());
   if (llt.info() != Eigen::Success) llt.compute(c0_);  // round-off only: the prior keeps it PD
   const Eigen::MatrixXd L = llt.matrixL();
-  const double log_norm = -0.5 * static_cast<double>(m.size()) * kLog2Pi -
+  const double log_norm = -0.5 * static_cast<double>(m.size()) * core::kLog2Pi -
                           L.diagonal().array().log().sum();
   const Eigen::MatrixXd white = L.triangularView<Eigen::Lower>().solve(y.colwise() - m);
   return (log_norm - 0.5 * white.colwise().squaredNorm().array()).matrix().transpose();
