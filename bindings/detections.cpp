@@ -141,7 +141,26 @@ Murty ranking; step() releases the GIL.
                              "Number of frames processed.")
       .def_property_readonly("image_size", [](const apps::BoxTracker& t) {
         return py::make_tuple(t.width(), t.height());
-      });
+      })
+      .def_property_readonly(
+          "learnt",
+          [](const apps::BoxTracker& t) {
+            py::dict d;
+            d["clutter_rate"] = t.clutter().rate();
+            d["duplicate_rate"] = t.clutter().duplicate_rate();
+            d["duplicate_offset_mean"] = Eigen::VectorXd(t.clutter().offsets().mean());
+            d["duplicate_offset_cov"] = Eigen::MatrixXd(t.clutter().offsets().covariance());
+            d["detection_probability"] = t.detection_probability();
+            d["score_target_mean"] = t.score_model().target_mean();
+            d["score_clutter_mean"] = t.score_model().clutter_mean();
+            d["score_sd"] = t.score_model().sd();
+            d["clutter_size_mean"] = Eigen::VectorXd(t.clutter().sizes().mean());
+            d["clutter_size_cov"] = Eigen::MatrixXd(t.clutter().sizes().covariance());
+            return d;
+          },
+          "The online estimates after the last step (BoxTracker.default_params()'s learn_* "
+          "options): the clutter rate per frame, p_D, the score model's class means and sd on "
+          "the probit scale, and the clutter's (log w, log h) mean and covariance.");
   def_params<BoxTrackerParams>(box, [](const apps::BoxTracker& t) { return t.params(); });
 }
 

@@ -47,7 +47,7 @@ LinearGaussianObservation.position(...).
       .def(py::init([](const py::handle& H, const py::handle& R) {
              auto h = as_matrix(H, "H");
              auto r = as_matrix(R, "R");
-             return LinearGaussianObservation{matrix_map(h), matrix_map(r)};
+             return LinearGaussianObservation{matrix_map(h), matrix_map(r), Eigen::MatrixXd()};
            }),
            py::arg("H"), py::arg("R"))
       .def_static(

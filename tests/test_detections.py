@@ -333,3 +333,65 @@ def test_confirmation_delays_tracks_and_gibbs_ranking_is_seeded():
     np.testing.assert_array_equal(runs[0], runs[1])
     with pytest.raises(ValueError, match=r"seed must be an int in \[0, 2\*\*64 - 1\]"):
         vtrack.track_detections(scene, image_size=(640, 480), seed=-1)
+
+
+def test_equal_or_missing_scores_leave_the_tracks_as_without_scores():
+    # A detector without scores (a constant confidence column, e.g. MOT's -1 or 1): the score
+    # model's likelihood ratio must be exactly 1, i.e. the tracks those of use_scores=False.
+    _, det = synthetic_scene(3)
+    for constant in (1.0, -1.0):
+        rows = det.copy()
+        rows[:, 6] = constant
+        with_scores = vtrack.track_detections(rows, image_size=(640, 480))
+        without = vtrack.track_detections(rows, image_size=(640, 480), use_scores=False)
+        np.testing.assert_array_equal(with_scores, without)
+
+
+def test_clutter_rate_detection_probability_and_scores_are_learnt():
+    # Three walkers detected with p_D 0.9 (scores Beta(5, 2)) and Poisson(4) person-sized false
+    # boxes a frame (scores Beta(2, 5)): started from the priors clutter_rate 1 and p_D 0.8, the
+    # online estimates approach the scene's (tolerances for this fixed seed: the estimates use
+    # the posterior's soft counts with a memory of 100 frames, and some clutter is explained by
+    # short-lived tracks), and true detections score higher on the learnt probit scale.
+    rng = np.random.default_rng(7)
+    starts = [(50, 100, 1.5, 0.3), (500, 300, -1.2, -0.5), (300, 50, 0.3, 1.0)]
+    tracker = vtrack.BoxTracker((640, 480))
+    for f in range(1, 301):
+        rows = []
+        for x, y, vx, vy in starts:
+            box = np.array([x + vx * f, y + vy * f, 40.0, 100.0]) % [560, 360, 1e9, 1e9]
+            if rng.random() < 0.9:
+                rows.append([*(box + rng.normal(size=4) * [2, 2, 3, 3]), rng.beta(5, 2)])
+        for _ in range(rng.poisson(4.0)):
+            rows.append([rng.uniform(0, 600), rng.uniform(0, 380), rng.uniform(30, 50),
+                         rng.uniform(80, 120), rng.beta(2, 5)])
+        tracker.step(np.array(rows).reshape(-1, 5))
+    learnt = tracker.learnt
+    assert 3.0 < learnt["clutter_rate"] < 5.0, learnt
+    assert 0.8 < learnt["detection_probability"] < 0.98, learnt
+    assert learnt["score_target_mean"] > 0.5 > -0.3 > learnt["score_clutter_mean"], learnt
+
+
+def test_a_frame_with_tens_of_thousands_of_boxes_has_a_bounded_cost():
+    # 30,000 boxes in one frame: each track's association holds at most gate_max_detections of
+    # them and at most max_births propose a birth, so the step ends (no timing assertion) and at
+    # most max_births new tracks can appear.
+    rng = np.random.default_rng(1)
+    crowd = np.column_stack([np.full(30000, 2.0), np.full(30000, -1.0),
+                             rng.uniform(0, 600, 30000), rng.uniform(0, 380, 30000),
+                             np.full(30000, 40.0), np.full(30000, 100.0), rng.uniform(0, 1, 30000)])
+    _, det = synthetic_scene(0, frames=5)
+    rows = np.vstack([det[:, :7], crowd])
+    out = vtrack.track_detections(rows, image_size=(640, 480), max_births=20)
+    per_frame = np.bincount(out[:, 0].astype(int), minlength=6)
+    assert per_frame[3] <= 3 + 20
+
+
+def test_a_learnt_detection_probability_starts_within_its_bounds():
+    with pytest.raises(ValueError, match="detection_probability"):
+        vtrack.BoxTracker((640, 480), detection_probability=0.99)
+    with pytest.raises(ValueError, match="detection_probability_min"):
+        vtrack.BoxTracker((640, 480), detection_probability_min=0.9, detection_probability_max=0.5)
+    fixed = vtrack.BoxTracker((640, 480), detection_probability=0.99,
+                              learn_detection_probability=False)
+    assert fixed.params["detection_probability"] == 0.99

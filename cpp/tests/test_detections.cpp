@@ -110,6 +110,13 @@ TEST(BoxTracker, SingleTargetEqualsTheKalmanFilter) {
   p.detection_probability = 1 - 1e-9;
   p.clutter_rate = 1e-6;
   p.birth_max_existence = 0.9;
+  // Fixed p_D and clutter, constant noise, no runs of misses, no duplicates: the textbook model.
+  p.learn_detection_probability = false;
+  p.learn_clutter = false;
+  p.use_scores = false;
+  p.duplicate_rate = 0;
+  p.detection_sd_relative = 0;
+  p.occlusion.rate = 0;
   // The model written out independently of box_motion/box_observation and models/: state
   // [cx, vcx, cy, vcy, w, h], F = I2 (x) [[1, 1], [0, 1]] plus identity for the size, Q = sigma_a^2
   // I2 (x) g g^T with g = [1/2, 1] plus sigma_s^2 for the size (eq. 7, T = 1); z = (cx, cy, w, h).

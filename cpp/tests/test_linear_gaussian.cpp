@@ -30,7 +30,7 @@ TEST(ConstantVelocity, MatchesTheStandardGlmbScenarioModel) {
 TEST(Kalman, ScalarUpdateIsTheTextbookClosedForm) {
   GaussianDensity prior{Eigen::VectorXd::Constant(1, 2.0), Eigen::MatrixXd::Constant(1, 1, 4.0)};
   LinearGaussianObservation obs{Eigen::MatrixXd::Constant(1, 1, 1.0),
-                                Eigen::MatrixXd::Constant(1, 1, 1.0)};
+                                Eigen::MatrixXd::Constant(1, 1, 1.0), Eigen::MatrixXd()};
   KalmanInnovation innovation(prior, obs);
   const Eigen::VectorXd z = Eigen::VectorXd::Constant(1, 7.0);
   const GaussianDensity post = innovation.posterior(z);
@@ -60,4 +60,26 @@ TEST(Kalman, UpdateAgreesWithTheInformationForm) {
                                           obs.H * predicted.cov * obs.H.transpose() + obs.R);
   KalmanInnovation innovation(predicted, obs);
   EXPECT_NEAR(innovation.log_likelihood(z), predictive.log_density(z), 1e-12);
+}
+
+TEST(Kalman, StateDependentNoiseIsEvaluatedAtThePredictedMean) {
+  // R(x) = R + diag((A x)^2): the update equals the constant-noise update with R(predicted mean).
+  GaussianDensity prior{Eigen::Vector2d(10.0, -4.0), Eigen::Matrix2d::Identity() * 9.0};
+  Eigen::MatrixXd H = Eigen::MatrixXd::Identity(2, 2);
+  Eigen::MatrixXd R = Eigen::MatrixXd::Identity(2, 2) * 2.0;
+  Eigen::MatrixXd A(2, 2);
+  A << 0.1, 0.0, 0.05, 0.2;
+  const LinearGaussianObservation scaled{H, R, A};
+  Eigen::MatrixXd R_at = R;
+  R_at(0, 0) += 1.0 * 1.0;  // (0.1 * 10)^2
+  R_at(1, 1) += 0.3 * 0.3;  // (0.05 * 10 + 0.2 * -4)^2
+  EXPECT_TRUE(scaled.noise_at(prior.mean).isApprox(R_at, 1e-12));
+  const LinearGaussianObservation fixed{H, R_at, Eigen::MatrixXd()};
+  const Eigen::Vector2d z(12.0, -3.0);
+  const GaussianDensity a = KalmanInnovation(prior, scaled).posterior(z);
+  const GaussianDensity b = KalmanInnovation(prior, fixed).posterior(z);
+  EXPECT_TRUE(a.mean.isApprox(b.mean, 1e-12));
+  EXPECT_TRUE(a.cov.isApprox(b.cov, 1e-12));
+  EXPECT_NEAR(KalmanInnovation(prior, scaled).mahalanobis_squared(z),
+              KalmanInnovation(prior, fixed).mahalanobis_squared(z), 1e-12);
 }

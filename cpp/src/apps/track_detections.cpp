@@ -42,6 +42,20 @@ const core::ParameterTable<BoxTrackerParams>& BoxTrackerParams::table() {
                                 .add("hypothesis_budget", &P::hypothesis_budget)
                                 .add("gate_threshold", &P::gate_threshold)
                                 .add("min_confidence", &P::min_confidence)
+                                .add("learn_clutter", &P::learn_clutter)
+                                .add("learn_detection_probability", &P::learn_detection_probability)
+                                .add("detection_probability_min", &P::detection_probability_min)
+                                .add("detection_probability_max", &P::detection_probability_max)
+                                .add("learning_memory", &P::learning_memory)
+                                .add("learning_prior_weight", &P::learning_prior_weight)
+                                .add("use_scores", &P::use_scores)
+                                .add("score_window", &P::score_window)
+                                .add("birth_score_weight", &P::birth_score_weight)
+                                .add("duplicate_rate", &P::duplicate_rate)
+                                .add("detection_sd_relative", &P::detection_sd_relative)
+                                .include(&P::occlusion)
+                                .include(&P::estimator)
+                                .add("max_births", &P::max_births)
                                 .include(&P::management)
                                 .add_choice("ranking", &P::ranking,
                                             {{"murty", filters::HypothesisRanking::murty},
@@ -69,6 +83,29 @@ void validate(const BoxTrackerParams& p) {
   require(p.birth_max_existence > 0 && p.birth_max_existence < 1, "birth_max_existence",
           p.birth_max_existence, "in (0, 1)");
   validate(p.management);
+  validate(p.occlusion);
+  validate(p.estimator);
+  // The learning bounds hold the learnt p_D; a fixed p_D (no learning) may lie outside them.
+  require(p.detection_probability_min > 0 &&
+              p.detection_probability_min <= p.detection_probability_max &&
+              p.detection_probability_max < 1,
+          "detection_probability_min", p.detection_probability_min,
+          "0 < detection_probability_min <= detection_probability_max < 1");
+  require(!p.learn_detection_probability ||
+              (p.detection_probability >= p.detection_probability_min &&
+               p.detection_probability <= p.detection_probability_max),
+          "detection_probability", p.detection_probability,
+          "within [detection_probability_min, detection_probability_max] when learnt");
+  require(p.learning_memory >= 1 && std::isfinite(p.learning_memory), "learning_memory",
+          p.learning_memory, ">= 1 and finite");
+  require(p.learning_prior_weight > 0 && std::isfinite(p.learning_prior_weight),
+          "learning_prior_weight", p.learning_prior_weight, "> 0 and finite");
+  require(p.score_window >= 1, "score_window", p.score_window, ">= 1");
+  require(p.detection_sd_relative >= 0 && std::isfinite(p.detection_sd_relative),
+          "detection_sd_relative", p.detection_sd_relative, ">= 0 and finite");
+  require(p.max_births >= 0, "max_births", p.max_births, ">= 0");
+  require(p.duplicate_rate >= 0 && std::isfinite(p.duplicate_rate), "duplicate_rate",
+          p.duplicate_rate, ">= 0 and finite");
   require(p.hypothesis_budget > 0, "hypothesis_budget", p.hypothesis_budget, "> 0");
   require(p.gate_threshold > 0, "gate_threshold", p.gate_threshold, "> 0 (or inf for no gating)");
   require(!std::isnan(p.min_confidence), "min_confidence", p.min_confidence, "a number");
@@ -84,11 +121,20 @@ models::LinearGaussianMotion box_motion(const BoxTrackerParams& p) {
 }
 
 models::LinearGaussianObservation box_observation(const BoxTrackerParams& p) {
-  models::LinearGaussianObservation o{Eigen::MatrixXd::Zero(4, 6), Eigen::MatrixXd::Zero(4, 4)};
+  models::LinearGaussianObservation o{Eigen::MatrixXd::Zero(4, 6), Eigen::MatrixXd::Zero(4, 4),
+                                      Eigen::MatrixXd()};
   o.H(0, 0) = o.H(1, 2) = o.H(2, 4) = o.H(3, 5) = 1.0;  // (cx, cy, w, h) of [cx,vcx,cy,vcy,w,h]
   const double c = p.detection_sd_centre * p.detection_sd_centre;
   const double s = p.detection_sd_size * p.detection_sd_size;
   o.R.diagonal() << c, c, s, s;
+  if (p.detection_sd_relative > 0) {
+    // Independent edge errors f w (left, right) and f h (top, bottom): the centre's sd is
+    // f w / sqrt 2, the width's f w sqrt 2.
+    const double f = p.detection_sd_relative;
+    o.noise_scale = Eigen::MatrixXd::Zero(4, 6);
+    o.noise_scale(0, 4) = o.noise_scale(1, 5) = f / std::sqrt(2.0);
+    o.noise_scale(2, 4) = o.noise_scale(3, 5) = f * std::sqrt(2.0);
+  }
   return o;
 }
 
@@ -120,6 +166,9 @@ filters::GlmbParams box_glmb_params(const BoxTrackerParams& p, int width, int he
   g.adaptive_birth.enabled = true;
   g.adaptive_birth.expected_births = p.birth_rate;
   g.adaptive_birth.max_existence = p.birth_max_existence;
+  g.adaptive_birth.max_births = p.max_births;
+  g.occlusion = p.occlusion;
+  g.estimator = p.estimator;
   Eigen::VectorXd sd(6);
   sd << p.birth_sd_centre, p.birth_sd_velocity, p.birth_sd_centre, p.birth_sd_velocity,
       p.birth_sd_size, p.birth_sd_size;
@@ -143,7 +192,35 @@ BoxTracker::BoxTracker(int width, int height, const BoxTrackerParams& params)
       width_(width),
       height_(height),
       tracker_(box_motion(params), box_observation(params), {},
-               box_tracker_params(params, width, height), std::nullopt, filters::BoxLayout{}) {}
+               box_tracker_params(params, width, height), std::nullopt, filters::BoxLayout{}),
+      clutter_(width, height,
+               {params.clutter_rate, params.duplicate_rate,
+                {params.learning_memory, params.learning_prior_weight}}),
+      detection_probability_(std::clamp(params.detection_probability,
+                                        params.detection_probability_min,
+                                        params.detection_probability_max),
+                             params.detection_probability_min,
+                             params.detection_probability_max,
+                             {params.learning_memory, params.learning_prior_weight}),
+      score_model_(params.score_window, params.learning_prior_weight, params.learning_memory) {}
+
+void BoxTracker::set_duplicate_sources() {
+  // The tracks of the last estimate, their boxes moved on by one frame at their velocity, each
+  // weighted by its existence and its probability of being detectable at this frame (a detector
+  // that cannot see a person gives neither their box nor its duplicates).
+  const auto& tracks = tracker_.estimates();
+  const double o = params_.occlusion.rate, stay = 1.0 - 1.0 / params_.occlusion.length;
+  Eigen::MatrixXd boxes(4, static_cast<Eigen::Index>(tracks.size()));
+  Eigen::VectorXd weights(boxes.cols());
+  for (std::size_t t = 0; t < tracks.size(); ++t) {
+    const auto& x = tracks[t].mean;  // [cx, vcx, cy, vcy, w, h]
+    const auto i = static_cast<Eigen::Index>(t);
+    boxes.col(i) << x[0] + x[1], x[2] + x[3], std::max(x[4], 1.0), std::max(x[5], 1.0);
+    const double hidden = tracks[t].undetectable * stay + (1.0 - tracks[t].undetectable) * o;
+    weights[i] = tracks[t].existence * (1.0 - hidden);
+  }
+  clutter_.set_sources(std::move(boxes), std::move(weights));
+}
 
 const filters::Tracks& BoxTracker::step(const std::vector<Detection>& detections) {
   std::vector<Detection> kept;
@@ -151,7 +228,37 @@ const filters::Tracks& BoxTracker::step(const std::vector<Detection>& detections
   for (const auto& d : detections) {
     if (d.confidence >= params_.min_confidence) kept.push_back(d);
   }
-  return tracker_.step(observations(kept));
+  const Eigen::MatrixXd z = observations(kept);
+  Eigen::VectorXd scores(z.cols());
+  for (std::size_t j = 0; j < kept.size(); ++j) scores[Eigen::Index(j)] = kept[j].confidence;
+  set_duplicate_sources();
+  filters::ScanInput input;
+  input.log_clutter = clutter_.log_intensity(z);
+  // Births from detections that are unexplained (not a duplicate of a track) and target-like.
+  input.birth_weight = clutter_.unexplained(Eigen::VectorXd::Ones(z.cols()));
+  const Eigen::VectorXd u = score_model_.transform(scores);
+  if (params_.use_scores) {
+    const Eigen::VectorXd log_ratio = score_model_.log_ratio(u);
+    input.log_clutter -= log_ratio;
+    if (params_.birth_score_weight) {
+      input.birth_weight.array() *= log_ratio.array().exp();
+    }
+  }
+  if (params_.learn_detection_probability) {
+    tracker_.set_detection_probability(detection_probability_.probability());
+  }
+  const filters::Tracks& tracks = tracker_.step(z, nullptr, input);
+  learn(z, scores, u);
+  return tracks;
+}
+
+void BoxTracker::learn(const Eigen::MatrixXd& z, const Eigen::VectorXd& scores,
+                       const Eigen::VectorXd& u) {
+  const filters::ScanSummary& s = tracker_.summary();
+  const Eigen::VectorXd p_target = (s.to_track + s.to_birth).cwiseMin(1.0);
+  if (params_.learn_clutter) clutter_.learn(z, (1.0 - p_target.array()).matrix());
+  if (params_.learn_detection_probability) detection_probability_.update(s.detected, s.missed);
+  score_model_.update(scores, u, p_target);
 }
 
 std::pair<int, int> detections_extent(const std::vector<Detection>& detections) {

@@ -21,7 +21,28 @@ const core::ParameterTable<AdaptiveBirthParams>& AdaptiveBirthParams::table() {
   using P = AdaptiveBirthParams;
   static const auto table = core::ParameterTable<P>()
                                 .add("adaptive_birth_rate", &P::expected_births)
-                                .add("adaptive_birth_max_existence", &P::max_existence);
+                                .add("adaptive_birth_max_existence", &P::max_existence)
+                                .add("adaptive_birth_max", &P::max_births);
+  return table;
+}
+
+const core::ParameterTable<OcclusionParams>& OcclusionParams::table() {
+  using P = OcclusionParams;
+  static const auto table = core::ParameterTable<P>()
+                                .add("occlusion_rate", &P::rate)
+                                .add("occlusion_length", &P::length)
+                                .add("occlusion_max_length", &P::max_length);
+  return table;
+}
+
+const core::ParameterTable<EstimatorParams>& EstimatorParams::table() {
+  using P = EstimatorParams;
+  static const auto table =
+      core::ParameterTable<P>()
+          .add_choice("label_estimator", &P::estimator,
+                      {{"map", LabelEstimator::map}, {"consistent", LabelEstimator::consistent}})
+          .add("label_keep_bonus", &P::keep_bonus)
+          .add("label_entry_penalty", &P::entry_penalty);
   return table;
 }
 
@@ -36,7 +57,10 @@ const core::ParameterTable<GlmbParams>& GlmbParams::table() {
           .add("max_hypotheses", &P::max_hypotheses)
           .add("prune_threshold", &P::prune_threshold)
           .add("gate_threshold", &P::gate_threshold)
+          .add("gate_max_detections", &P::gate_max_detections)
           .include(&P::adaptive_birth)
+          .include(&P::occlusion)
+          .include(&P::estimator)
           .add_choice("ranking", &P::ranking,
                       {{"murty", HypothesisRanking::murty}, {"gibbs", HypothesisRanking::gibbs}})
           .add("seed", &P::seed);
@@ -65,6 +89,24 @@ void validate(const GlmbParams& p) {
   require(adaptive.expected_births > 0.0 && std::isfinite(adaptive.expected_births),
           "adaptive_birth_rate", adaptive.expected_births, "positive and finite");
   require_probability(adaptive.max_existence, "adaptive_birth_max_existence", false);
+  require(adaptive.max_births >= 0, "adaptive_birth_max", adaptive.max_births, ">= 0");
+  require(p.gate_max_detections >= 1, "gate_max_detections", p.gate_max_detections, ">= 1");
+  validate(p.occlusion);
+  validate(p.estimator);
+}
+
+void validate(const OcclusionParams& p) {
+  require(p.rate >= 0.0 && p.rate < 1.0, "occlusion_rate", p.rate, "in [0, 1)");
+  require(p.length >= 1.0 && std::isfinite(p.length), "occlusion_length", p.length,
+          ">= 1 and finite");
+  require(p.max_length >= 1, "occlusion_max_length", p.max_length, ">= 1");
+}
+
+void validate(const EstimatorParams& p) {
+  require(p.keep_bonus >= 0.0 && std::isfinite(p.keep_bonus), "label_keep_bonus", p.keep_bonus,
+          ">= 0 and finite");
+  require(p.entry_penalty >= 0.0 && std::isfinite(p.entry_penalty), "label_entry_penalty",
+          p.entry_penalty, ">= 0 and finite");
 }
 
 void check_glmb_dimensions(const models::LinearGaussianMotion& motion,
@@ -77,6 +119,11 @@ void check_glmb_dimensions(const models::LinearGaussianMotion& motion,
   if (observation.H.cols() != x_dim || observation.R.rows() != observation.H.rows() ||
       observation.R.cols() != observation.H.rows()) {
     throw InvalidArgument("observation model: H must be z_dim x x_dim and R z_dim x z_dim");
+  }
+  if (observation.noise_scale.size() != 0 &&
+      (observation.noise_scale.rows() != observation.H.rows() ||
+       observation.noise_scale.cols() != x_dim)) {
+    throw InvalidArgument("observation model: noise_scale must be z_dim x x_dim (or empty)");
   }
   for (std::size_t b = 0; b < births.size(); ++b) {
     require_probability(births[b].existence, "birth existence");

@@ -56,20 +56,20 @@ GlmbTracker::GlmbTracker(models::LinearGaussianMotion motion,
       management_(params.management) {}
 
 const Tracks& GlmbTracker::step(const Eigen::Ref<const Eigen::MatrixXd>& detections,
-                                const cv::Mat* depth) {
+                                const cv::Mat* depth, const ScanInput& input) {
   if (depth && !has_depth_model()) {
     throw InvalidArgument("a depth image needs a tracker built with a depth model");
   }
   std::visit(
       [&](auto& f) {
         if constexpr (std::is_same_v<std::decay_t<decltype(f)>, ParticleGlmbFilter>) {
-          f.step(detections, depth);
+          f.step(detections, depth, input);
         } else {
-          f.step(detections);
+          f.step(detections, input);
         }
       },
       filter_);
-  report(visit([](const auto& f) { return f.estimates(); }));
+  report(estimates());
   return tracks_;
 }
 
@@ -120,6 +120,17 @@ void GlmbTracker::report(const std::vector<GlmbEstimate>& estimates) {
   }
   std::sort(tracks_.begin(), tracks_.end(),
             [](const TrackEstimate& a, const TrackEstimate& b) { return a.id < b.id; });
+}
+
+const std::vector<GlmbEstimate>& GlmbTracker::estimates() const {
+  return visit([](const auto& f) -> const std::vector<GlmbEstimate>& { return f.estimates(); });
+}
+
+const ScanSummary& GlmbTracker::summary() const {
+  return visit([](const auto& f) -> const ScanSummary& { return f.summary(); });
+}
+void GlmbTracker::set_detection_probability(double p_d) {
+  std::visit([p_d](auto& f) { f.set_detection_probability(p_d); }, filter_);
 }
 
 Eigen::VectorXd GlmbTracker::cardinality_distribution() const {

@@ -234,9 +234,9 @@ ParticleGlmbFilter::ParticleGlmbFilter(models::LinearGaussianMotion motion,
 }
 
 void ParticleGlmbFilter::step(const Eigen::Ref<const Eigen::MatrixXd>& detections,
-                              const cv::Mat* depth) {
+                              const cv::Mat* depth, const ScanInput& input) {
   tracks_model_.set_depth(depth, detections);
-  GlmbFilter<ParticleTracks>::step(detections);
+  GlmbFilter<ParticleTracks>::step(detections, input);
   tracks_model_.set_depth(nullptr, detections);
 }
 

@@ -40,9 +40,17 @@ LinearGaussianObservation LinearGaussianObservation::position_of_constant_veloci
   if (R.rows() != axes || R.cols() != axes) {
     throw InvalidArgument("R must be " + std::to_string(axes) + "x" + std::to_string(axes));
   }
-  LinearGaussianObservation o{Eigen::MatrixXd::Zero(axes, 2 * axes), R};
+  LinearGaussianObservation o{Eigen::MatrixXd::Zero(axes, 2 * axes), R, Eigen::MatrixXd()};
   for (int a = 0; a < axes; ++a) o.H(a, 2 * a) = 1.0;
   return o;
+}
+
+Eigen::MatrixXd LinearGaussianObservation::noise_at(
+    const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  if (noise_scale.size() == 0) return R;
+  Eigen::MatrixXd r = R;
+  r.diagonal() += (noise_scale * x).array().square().matrix();
+  return r;
 }
 
 GaussianDensity kalman_predict(const GaussianDensity& prior, const LinearGaussianMotion& motion) {
@@ -53,7 +61,8 @@ KalmanInnovation::KalmanInnovation(const GaussianDensity& predicted,
                                    const LinearGaussianObservation& observation)
     : predicted_mean_(predicted.mean), predicted_z_(observation.H * predicted.mean) {
   const Eigen::MatrixXd PHt = predicted.cov * observation.H.transpose();
-  Eigen::MatrixXd S = observation.H * PHt + observation.R;
+  const Eigen::MatrixXd R = observation.noise_at(predicted.mean);
+  Eigen::MatrixXd S = observation.H * PHt + R;
   S = 0.5 * (S + S.transpose());
   innovation_llt_.compute(S);
   if (innovation_llt_.info() != Eigen::Success) {
@@ -66,7 +75,7 @@ KalmanInnovation::KalmanInnovation(const GaussianDensity& predicted,
   const Eigen::Index n = predicted.mean.size();
   const Eigen::MatrixXd IKH = Eigen::MatrixXd::Identity(n, n) - gain_ * observation.H;
   // Joseph form: stays symmetric positive semi-definite under round-off.
-  posterior_cov_ = IKH * predicted.cov * IKH.transpose() + gain_ * observation.R * gain_.transpose();
+  posterior_cov_ = IKH * predicted.cov * IKH.transpose() + gain_ * R * gain_.transpose();
 }
 
 double KalmanInnovation::mahalanobis_squared(const Eigen::Ref<const Eigen::VectorXd>& z) const {

@@ -11,6 +11,10 @@ namespace vtrack::core {
 // log(2 pi): the normaliser of every Gaussian density in vtrack, -d/2 log(2 pi) - 1/2 log|C|.
 inline constexpr double kLog2Pi = 1.8378770664093454835606594728112;
 
+// The standard normal quantile Phi^-1(p), p in (0, 1) (Acklam's rational approximation refined by
+// one Halley step on erfc: relative error below 1e-12). InvalidArgument outside (0, 1).
+double normal_quantile(double p);
+
 class Gaussian {
  public:
   Gaussian(Eigen::VectorXd mean, const Eigen::MatrixXd& covariance);

@@ -49,15 +49,76 @@ struct GaussianBirth {
 // detections that tracks explain propose (almost) nothing. The birth density is Gaussian, centred
 // on the state H^+ z (the least-norm state that predicts z exactly: zero velocity for a
 // position observation) with covariance `cov`. Fixed births (GaussianBirth) still apply.
+//
+// A caller may weight the detections (ScanInput::birth_weight, b_j >= 0, e.g. the likelihood ratio
+// of a detection's score): r_B(z_j) = min(max_existence, expected_births (1 - r_U(z_j)) b_j /
+// sum_z' (1 - r_U(z')) b_z'), so that births go to detections that are both unexplained and
+// target-like. At most max_births detections propose a birth per scan (the largest r_B): a scan
+// with tens of thousands of boxes then adds a bounded number of rows to the next assignment.
 struct AdaptiveBirthParams {
   bool enabled = false;
   double expected_births = 0.1;  // lambda_B: expected number of adaptive births per scan
   double max_existence = 0.03;   // r_B,max: cap on one detection's birth existence
+  int max_births = 100;          // cap on the number of adaptive births proposed per scan
   Eigen::MatrixXd cov;           // x_dim x x_dim; must be given when enabled
 
-  // adaptive_birth_rate (expected_births), adaptive_birth_max_existence; `enabled` and `cov`
-  // come with the covariance matrix, a model argument rather than a parameter.
+  // adaptive_birth_rate (expected_births), adaptive_birth_max_existence, adaptive_birth_max;
+  // `enabled` and `cov` come with the covariance matrix, a model argument rather than a
+  // parameter.
   static const core::ParameterTable<AdaptiveBirthParams>& table();
+};
+
+// Runs of missed detections (occlusion), the state-dependent p_D,k(x, l) of eq. (8) with a hidden
+// visibility mode per track: a visible track turns undetectable with probability `rate` per scan
+// and an undetectable one becomes visible again with probability 1 / `length` (a Markov chain, so
+// runs of misses last `length` scans on average); p_D is the usual one while visible and 0 while
+// undetectable. Each track carries o = P(undetectable), predicted as
+//   o' = o (1 - 1/length) + (1 - o) rate,
+// and eq. (8)'s factors become p_D (1 - o') g(z|x) / kappa(z) for a detection (posterior o = 0) and
+// o' + (1 - o') (1 - p_D) for a miss (posterior o = o' / that). After a few misses in a row o is
+// near 1, a further miss costs -log(1 - 1/length) instead of -log(1 - p_D), and the track coasts
+// through the run instead of dying and being re-born under a new label; a track that is missed
+// once in a while (o small) is scored as before. rate = 0 (the default) is the constant p_D.
+//
+// Runs last at most max_length scans: a track missed that many scans in a row (its association
+// history says so) is detectable again (o' = 0), so further misses cost -log(1 - p_D) and it dies
+// unless re-detected. Without the bound a false track coasts on for as long as the truncated
+// hypotheses keep no alternative in which it died: measured on all of PETS09's ACF boxes, a
+// track born on a static false box (two frames) was reported for 118 frames with existence 1.
+struct OcclusionParams {
+  double rate = 0.0;      // per-scan probability that a detectable track starts a run of misses
+  double length = 10.0;   // mean length of a run, scans (>= 1)
+  int max_length = 1000;  // longest run, scans (>= 1)
+
+  // occlusion_rate, occlusion_length, occlusion_max_length.
+  static const core::ParameterTable<OcclusionParams>& table();
+};
+
+// Which hypothesis the estimates are read from.
+enum class LabelEstimator {
+  // The most probable hypothesis among those with the MAP cardinality (the usual delta-GLMB
+  // estimator, Vo & Vo 2013), afresh at every scan.
+  map,
+  // A joint MAP of the reported label set with the previous report: among the posterior
+  // hypotheses I, the one maximising
+  //   log w(I) + keep_bonus |I ∩ R| - entry_penalty |I \ R|,
+  // R the labels reported at the previous scan. It is the MAP estimate under a Markov prior on
+  // the reported set that makes keeping a label e^keep_bonus times likelier than dropping it and
+  // a new label e^entry_penalty times less likely than not reporting it. For one independent
+  // label of existence r: a reported label stays while r > 1 / (1 + e^keep_bonus), a new one
+  // enters once r > 1 / (1 + e^-entry_penalty) -- hysteresis on the existence, so the estimate no
+  // longer flips between two labels that explain one person with similar weights, and a label
+  // born on one false detection (r below the entry level) is not reported.
+  consistent,
+};
+
+struct EstimatorParams {
+  LabelEstimator estimator = LabelEstimator::map;
+  double keep_bonus = 2.0;     // nats (consistent estimator)
+  double entry_penalty = 0.0;  // nats (consistent estimator)
+
+  // label_estimator "map" | "consistent", label_keep_bonus, label_entry_penalty.
+  static const core::ParameterTable<EstimatorParams>& table();
 };
 
 // How each prior hypothesis's posterior hypotheses are generated from its cost matrix.
@@ -112,26 +173,63 @@ struct GlmbParams {
   // chi-square quantile of the gate probability (32.24 = P_G 0.9999999 for 2-D detections).
   // +inf disables gating (exact but slower).
   double gate_threshold = 32.24;
+  // At most this many detections, the most likely ones, enter the association of one track (its
+  // row of the cost matrix); the others are scored as if outside its gate. It bounds the
+  // assignment problem when a scan has very many detections (tens of thousands of boxes in one
+  // frame: the cost matrix then has at most rows x gate_max_detections columns); in ordinary
+  // scenes a gate holds a few detections and the cap changes nothing.
+  int gate_max_detections = 50;
   AdaptiveBirthParams adaptive_birth;
+  OcclusionParams occlusion;  // runs of missed detections (off: constant p_D)
+  EstimatorParams estimator;
   FieldOfView field_of_view;  // state-dependent p_S and p_D (off: constant)
   HypothesisRanking ranking = HypothesisRanking::murty;
   // The filter's random engine: the Gibbs sampler's, and the particle densities' (prediction,
   // births, resampling) of the particle GLMB. Murty's ranking with Gaussian densities uses none.
   std::uint64_t seed = 0;
 
-  // Names: the fields above, ranking "murty" | "gibbs", and adaptive_birth's (field_of_view is a
-  // box in state space, set by the trackers that use it).
+  // Names: the fields above, ranking "murty" | "gibbs", and those of adaptive_birth, occlusion
+  // and estimator (field_of_view is a box in state space, set by the trackers that use it).
   static const core::ParameterTable<GlmbParams>& table();
 };
 
 // InvalidArgument naming the parameter and its value (dimensions are checked by the filter,
 // which knows the state's).
 void validate(const GlmbParams& params);
+void validate(const OcclusionParams& params);
+void validate(const EstimatorParams& params);
 // InvalidArgument unless the models, births, field of view and adaptive-birth covariance agree on
 // the state and measurement dimensions.
 void check_glmb_dimensions(const models::LinearGaussianMotion& motion,
                            const models::LinearGaussianObservation& observation,
                            const std::vector<GaussianBirth>& births, const GlmbParams& params);
+
+// What a caller may say about one scan's detections beyond their positions (each vector empty or
+// of one entry per detection).
+struct ScanInput {
+  // log kappa(z_j): the clutter intensity at each detection, replacing the constant
+  // GlmbParams::clutter_intensity (a clutter density that is not uniform, a clutter rate learnt
+  // online, a detection feature's likelihood ratio folded in: a feature f with densities f1 under
+  // a target and f0 under clutter multiplies g(z|x) / kappa(z) by f1 / f0, i.e. divides kappa by
+  // it).
+  Eigen::VectorXd log_clutter;
+  // b_j >= 0: the adaptive birth's weight of each detection (AdaptiveBirthParams).
+  Eigen::VectorXd birth_weight;
+};
+
+// What the posterior of the last scan says about its detections and tracks (over the kept,
+// normalised hypotheses): the sufficient statistics of an online estimate of the clutter and the
+// detector (filters/detector_learning.hpp).
+struct ScanSummary {
+  // P(detection j was assigned to a track that existed before the scan), and to a track born at
+  // it; 1 - both = P(j is clutter).
+  Eigen::VectorXd to_track, to_birth;
+  // Over the surviving tracks whose mean lies where p_D applies (the field of view): the expected
+  // number detected, and the expected number missed while detectable (a miss of a track that may
+  // be in an undetectable run, OcclusionParams, counts with the probability it was detectable).
+  double detected = 0.0;
+  double missed = 0.0;
+};
 
 // Labels of adaptive births: birth_index = (number of fixed births) + (index of the proposing
 // detection in the previous scan's detection matrix).
@@ -140,6 +238,7 @@ struct GlmbEstimate {
   Eigen::VectorXd mean;
   Eigen::MatrixXd cov;
   double existence = 1.0;  // the label's posterior probability of existing (over all hypotheses)
+  double undetectable = 0.0;  // P(in a run of misses) of this track (OcclusionParams)
 };
 
 // The track-density policy of the Gaussian filter: one Gaussian per track, the Kalman recursion.
@@ -171,6 +270,7 @@ struct GaussianTracks {
                                  double gate, Eigen::Ref<Eigen::RowVectorXd> out) const;
   // log of the missed-detection factor divided by (1 - p_D): 0, there is no secondary observation.
   double log_missed_likelihood(const Candidate&) const { return 0.0; }
+  void set_detection_probability(double) {}  // the Gaussian densities do not depend on p_D
   Density detected(const Candidate& c, const Eigen::Ref<const Eigen::VectorXd>& z) {
     return c.innovation.posterior(z);
   }
@@ -191,13 +291,16 @@ class GlmbFilter {
              std::vector<GaussianBirth> births, GlmbParams params = {}, Tracks tracks = {});
 
   // One joint prediction-update with the detections of the next scan, one per column of the
-  // z_dim x M matrix (M may be 0).
-  void step(const Eigen::Ref<const Eigen::MatrixXd>& detections);
+  // z_dim x M matrix (M may be 0), and optionally what the caller knows of each (ScanInput).
+  void step(const Eigen::Ref<const Eigen::MatrixXd>& detections, const ScanInput& input = {});
 
-  // Estimates at the current scan: the tracks of the most probable hypothesis among those with the
-  // MAP cardinality (the usual delta-GLMB estimator), each with its label's existence
-  // probability.
-  std::vector<GlmbEstimate> estimates() const;
+  // Estimates at the current scan, each with its label's existence probability: the tracks of
+  // the hypothesis the estimator chooses (EstimatorParams).
+  const std::vector<GlmbEstimate>& estimates() const { return estimates_; }
+  // The posterior's association statistics of the last scan.
+  const ScanSummary& summary() const { return summary_; }
+  // p_D inside the field of view from the next scan on (an online estimate of it; in (0, 1]).
+  void set_detection_probability(double p_d);
   // Whether some hypothesis holds a track with this label (false once the track has surely
   // ended).
   bool holds(const TrackLabel& label) const;
@@ -217,6 +320,8 @@ class GlmbFilter {
   struct Track {
     TrackLabel label;
     Density density;
+    double undetectable = 0.0;  // o = P(in a run of misses), OcclusionParams
+    int misses = 0;             // scans missed in a row
   };
   struct Hypothesis {
     std::vector<int> tracks;  // indices into tracks_, increasing
@@ -229,11 +334,16 @@ class GlmbFilter {
     std::vector<TrackLabel> labels;  // each row's label (births: labelled at this scan)
     Eigen::VectorXd log_exists, log_absent, log_missed;
     Eigen::MatrixXd log_detected;  // rows x detections
+    // Per row: P(undetectable) after a miss (OcclusionParams), and the probability that a miss
+    // happened while detectable, or -1 where p_D does not apply (births, outside the field of view)
+    // -- the ScanSummary's missed count.
+    Eigen::VectorXd missed_undetectable, missed_detectable;
   };
   // The posterior hypotheses of one scan before normalisation, and the child tracks they use.
   struct Posterior {
     std::vector<Track> children;
     std::vector<int> child_detection;             // the detection each child took, -1 if missed
+    std::vector<int> child_row;                   // the candidate row each child comes from
     std::map<std::pair<int, int>, int> child_of;  // (row, detection or -1) -> child
     std::map<std::vector<int>, double> weights;   // child set -> log weight (unnormalised)
   };
@@ -244,7 +354,8 @@ class GlmbFilter {
   };
 
   // The stages of step(), in order.
-  ScanFactors score_candidates(const Eigen::Ref<const Eigen::MatrixXd>& detections);
+  ScanFactors score_candidates(const Eigen::Ref<const Eigen::MatrixXd>& detections,
+                               const ScanInput& input);
   Posterior rank_hypotheses(const ScanFactors& factors,
                             const Eigen::Ref<const Eigen::MatrixXd>& detections);
   // Normalised, pruned below prune_threshold and capped at max_hypotheses (best first).
@@ -261,10 +372,17 @@ class GlmbFilter {
                               std::vector<int>& columns) const;
   RankedChoices rank(const Eigen::MatrixXd& cost, std::int64_t requested);
 
+  // The summary of the kept hypotheses (summary_).
+  void summarise(const std::vector<Hypothesis>& hypotheses, const ScanFactors& factors,
+                 const Posterior& posterior, Eigen::Index n_det);
   // Replaces adaptive_births_ by the births that `detections` propose for the next scan, given
-  // each detection's posterior probability of having been assigned to a track.
+  // each detection's posterior probability of having been assigned to a track and its weight.
   void propose_adaptive_births(const Eigen::Ref<const Eigen::MatrixXd>& detections,
-                               const Eigen::VectorXd& assigned);
+                               const Eigen::VectorXd& assigned, const Eigen::VectorXd& weight);
+  // Keeps, per row, the gate_max_detections most likely detections (the others to -inf).
+  void cap_gates(Eigen::MatrixXd& log_detected) const;
+  // The estimates of the current hypotheses (estimates_, reported_).
+  void estimate();
 
   models::LinearGaussianMotion motion_;
   models::LinearGaussianObservation observation_;
@@ -278,6 +396,9 @@ class GlmbFilter {
   std::vector<Hypothesis> hypotheses_;
   core::Rng ranking_rng_;
   int time_ = 0;
+  ScanSummary summary_;
+  std::vector<GlmbEstimate> estimates_;
+  std::vector<TrackLabel> reported_;  // the labels of estimates_ (the consistent estimator's R)
 };
 
 // The member definitions are in filters/glmb_impl.hpp: a translation unit that adds a density

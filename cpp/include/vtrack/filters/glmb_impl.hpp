@@ -17,6 +17,10 @@
 
 namespace vtrack::filters {
 
+namespace detail {
+inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
+}  // namespace detail
+
 template <class Tracks>
 GlmbFilter<Tracks>::GlmbFilter(models::LinearGaussianMotion motion,
                                models::LinearGaussianObservation observation,
@@ -33,49 +37,67 @@ GlmbFilter<Tracks>::GlmbFilter(models::LinearGaussianMotion motion,
 }
 
 template <class Tracks>
-void GlmbFilter<Tracks>::step(const Eigen::Ref<const Eigen::MatrixXd>& detections) {
+void GlmbFilter<Tracks>::set_detection_probability(double p_d) {
+  require(p_d > 0.0 && p_d <= 1.0, "detection_probability", p_d, "in (0, 1]");
+  params_.detection_probability = p_d;
+  tracks_model_.set_detection_probability(p_d);
+}
+
+template <class Tracks>
+void GlmbFilter<Tracks>::step(const Eigen::Ref<const Eigen::MatrixXd>& detections,
+                              const ScanInput& input) {
   if (detections.rows() != observation_.H.rows() && detections.cols() > 0) {
     throw InvalidArgument("detections must have " + std::to_string(observation_.H.rows()) +
                           " rows (one detection per column), got " +
                           std::to_string(detections.rows()));
   }
   if (!detections.allFinite()) throw InvalidArgument("detections contain NaN or inf");
-  ++time_;
-  const ScanFactors factors = score_candidates(detections);
-  Posterior posterior = rank_hypotheses(factors, detections);
   const auto n_det = static_cast<Eigen::Index>(detections.cols());
+  for (const auto* v : {&input.log_clutter, &input.birth_weight}) {
+    if (v->size() != 0 && v->size() != n_det) {
+      throw InvalidArgument("ScanInput vectors must have one entry per detection (" +
+                            std::to_string(n_det) + "), got " + std::to_string(v->size()));
+    }
+  }
+  if (input.log_clutter.size() > 0 && input.log_clutter.array().isNaN().any()) {
+    throw InvalidArgument("ScanInput log_clutter contains NaN");
+  }
+  if (input.birth_weight.size() > 0 &&
+      !(input.birth_weight.array() >= 0.0 && input.birth_weight.array() < detail::kInfinity)
+           .all()) {
+    throw InvalidArgument("ScanInput birth_weight must be finite and >= 0");
+  }
+  ++time_;
+  const ScanFactors factors = score_candidates(detections, input);
+  Posterior posterior = rank_hypotheses(factors, detections);
+  const Eigen::VectorXd weight =
+      input.birth_weight.size() > 0 ? input.birth_weight : Eigen::VectorXd::Ones(n_det);
   if (posterior.weights.empty()) {
     // Every hypothesis was infeasible (e.g. p_D = p_S = 1 with fewer detections than tracks):
     // the data contradict the model, so restart from "no targets" rather than produce NaN.
     tracks_.clear();
     hypotheses_.assign(1, {{}, 0.0});
-    propose_adaptive_births(detections, Eigen::VectorXd::Zero(n_det));
+    summary_ = ScanSummary{Eigen::VectorXd::Zero(n_det), Eigen::VectorXd::Zero(n_det), 0.0, 0.0};
+    propose_adaptive_births(detections, Eigen::VectorXd::Zero(n_det), weight);
+    estimate();
     return;
   }
   std::vector<Hypothesis> updated = normalise_and_prune(posterior);
-  if (params_.adaptive_birth.enabled) {
-    // r_U(z_j): the posterior probability that detection j was assigned to a track.
-    Eigen::VectorXd assigned = Eigen::VectorXd::Zero(n_det);
-    for (const auto& h : updated) {
-      for (int t : h.tracks) {
-        const int j = posterior.child_detection[t];
-        if (j >= 0) assigned[j] += std::exp(h.log_weight);
-      }
-    }
-    propose_adaptive_births(detections, assigned);
-  }
+  summarise(updated, factors, posterior, n_det);
+  // r_U(z_j): the posterior probability that detection j was assigned to a track.
+  propose_adaptive_births(detections, summary_.to_track + summary_.to_birth, weight);
   keep_used_tracks(std::move(updated), posterior);
+  estimate();
 }
 
 template <class Tracks>
 typename GlmbFilter<Tracks>::ScanFactors GlmbFilter<Tracks>::score_candidates(
-    const Eigen::Ref<const Eigen::MatrixXd>& detections) {
+    const Eigen::Ref<const Eigen::MatrixXd>& detections, const ScanInput& input) {
   // Per candidate track (surviving prior tracks, then birth components): the predicted density,
   // the log-probabilities of existing / not existing at this scan, log(p_D <p, g(z_j|.)> / kappa)
   // for every detection (-inf outside the gate), and the log missed-detection factor
   // log((1 - p_D) <p, psi_missed>) -- per row, because the switching model's missed branch
   // depends on the track (its depth likelihood). These factors are shared by all hypotheses.
-  constexpr double kInf = std::numeric_limits<double>::infinity();
   const int n_prior = static_cast<int>(tracks_.size());
   const int n_fixed = static_cast<int>(births_.size());
   const int n_rows = n_prior + n_fixed + static_cast<int>(adaptive_births_.size());
@@ -85,10 +107,16 @@ typename GlmbFilter<Tracks>::ScanFactors GlmbFilter<Tracks>::score_candidates(
   f.log_exists.resize(n_rows);
   f.log_absent.resize(n_rows);
   f.log_missed.resize(n_rows);
+  f.missed_undetectable.resize(n_rows);
+  f.missed_detectable.resize(n_rows);
   f.log_detected.resize(n_rows, n_det);
   Eigen::RowVectorXd log_g(n_det);
   const FieldOfView& fov = params_.field_of_view;
-  const double log_kappa = std::log(params_.clutter_intensity);
+  const Eigen::RowVectorXd log_kappa =
+      input.log_clutter.size() > 0
+          ? Eigen::RowVectorXd(input.log_clutter.transpose())
+          : Eigen::RowVectorXd::Constant(n_det, std::log(params_.clutter_intensity));
+  const double stay_hidden = 1.0 - 1.0 / params_.occlusion.length;
   for (int r = 0; r < n_rows; ++r) {
     const bool is_birth = r >= n_prior;
     const int b = r - n_prior;  // birth component: the fixed ones, then the adaptive ones
@@ -104,22 +132,51 @@ typename GlmbFilter<Tracks>::ScanFactors GlmbFilter<Tracks>::score_candidates(
     }
     Density predicted = is_birth ? tracks_model_.birth(birth->density)
                                  : tracks_model_.predict(tracks_[r].density, motion_);
-    // p_D(x) at the predicted mean (eq. 8).
+    // p_D(x) at the predicted mean (eq. 8), times P(detectable) of the visibility mode.
     const bool detectable = !fov.enabled || fov.contains(Tracks::moments(predicted).mean);
     const double p_d = detectable ? params_.detection_probability
                                   : fov.outside_detection_probability;
+    const double o = is_birth || tracks_[r].misses >= params_.occlusion.max_length
+                         ? 0.0
+                         : tracks_[r].undetectable * stay_hidden +
+                               (1.0 - tracks_[r].undetectable) * params_.occlusion.rate;
+    const double miss = o + (1.0 - o) * (1.0 - p_d);
+    f.missed_undetectable[r] = miss > 0.0 ? o / miss : 0.0;
+    f.missed_detectable[r] = is_birth || !detectable ? -1.0 : 1.0 - f.missed_undetectable[r];
     f.candidates.push_back(tracks_model_.candidate(std::move(predicted), observation_, is_birth));
     f.log_exists[r] = std::log(p_exist);
     f.log_absent[r] = std::log1p(-p_exist);
-    f.log_missed[r] = std::log1p(-p_d) + tracks_model_.log_missed_likelihood(f.candidates.back());
+    f.log_missed[r] = std::log(miss) + tracks_model_.log_missed_likelihood(f.candidates.back());
     tracks_model_.log_detection_likelihoods(f.candidates.back(), detections,
                                             params_.gate_threshold, log_g);
-    const double log_pd_over_kappa = std::log(p_d) - log_kappa;
+    const double log_pd = std::log(p_d * (1.0 - o));
     for (int j = 0; j < n_det; ++j) {
-      f.log_detected(r, j) = log_g[j] > -kInf ? log_pd_over_kappa + log_g[j] : -kInf;
+      f.log_detected(r, j) =
+          log_g[j] > -detail::kInfinity ? log_pd - log_kappa[j] + log_g[j] : -detail::kInfinity;
     }
   }
+  cap_gates(f.log_detected);
   return f;
+}
+
+template <class Tracks>
+void GlmbFilter<Tracks>::cap_gates(Eigen::MatrixXd& log_detected) const {
+  const auto cap = static_cast<Eigen::Index>(params_.gate_max_detections);
+  if (log_detected.cols() <= cap) return;
+  std::vector<double> gated;
+  for (Eigen::Index r = 0; r < log_detected.rows(); ++r) {
+    gated.clear();
+    for (Eigen::Index j = 0; j < log_detected.cols(); ++j) {
+      if (log_detected(r, j) > -detail::kInfinity) gated.push_back(log_detected(r, j));
+    }
+    if (static_cast<Eigen::Index>(gated.size()) <= cap) continue;
+    // The cap-th largest factor; ties at it are all kept (a cap that is exceeded by ties only).
+    std::nth_element(gated.begin(), gated.begin() + (cap - 1), gated.end(), std::greater<>());
+    const double threshold = gated[static_cast<std::size_t>(cap - 1)];
+    for (Eigen::Index j = 0; j < log_detected.cols(); ++j) {
+      if (log_detected(r, j) < threshold) log_detected(r, j) = -detail::kInfinity;
+    }
+  }
 }
 
 template <class Tracks>
@@ -134,8 +191,12 @@ int GlmbFilter<Tracks>::child_index(const ScanFactors& factors, Posterior& poste
   child.density = detection < 0
                       ? tracks_model_.missed(factors.candidates[row])
                       : tracks_model_.detected(factors.candidates[row], detections.col(detection));
+  child.undetectable = detection < 0 ? factors.missed_undetectable[row] : 0.0;
+  const int n_prior = static_cast<int>(tracks_.size());
+  child.misses = detection >= 0 ? 0 : row < n_prior ? tracks_[row].misses + 1 : 1;
   posterior.children.push_back(std::move(child));
   posterior.child_detection.push_back(detection);
+  posterior.child_row.push_back(row);
   const int index = static_cast<int>(posterior.children.size()) - 1;
   posterior.child_of.emplace(key, index);
   return index;
@@ -144,7 +205,7 @@ int GlmbFilter<Tracks>::child_index(const ScanFactors& factors, Posterior& poste
 template <class Tracks>
 Eigen::MatrixXd GlmbFilter<Tracks>::cost_matrix(const ScanFactors& f, const std::vector<int>& rows,
                                                 std::vector<int>& columns) const {
-  constexpr double kInf = std::numeric_limits<double>::infinity();
+  constexpr double kInf = detail::kInfinity;
   // Only detections some row can take enter the matrix.
   columns.clear();
   for (Eigen::Index j = 0; j < f.log_detected.cols(); ++j) {
@@ -278,26 +339,65 @@ typename GlmbFilter<Tracks>::RankedChoices GlmbFilter<Tracks>::rank(const Eigen:
 }
 
 template <class Tracks>
+void GlmbFilter<Tracks>::summarise(const std::vector<Hypothesis>& hypotheses,
+                                   const ScanFactors& factors, const Posterior& posterior,
+                                   Eigen::Index n_det) {
+  const int n_prior = static_cast<int>(tracks_.size());
+  ScanSummary s{Eigen::VectorXd::Zero(n_det), Eigen::VectorXd::Zero(n_det), 0.0, 0.0};
+  for (const auto& h : hypotheses) {
+    const double w = std::exp(h.log_weight);
+    for (int t : h.tracks) {
+      const int j = posterior.child_detection[t];
+      const int row = posterior.child_row[t];
+      const bool survivor = row < n_prior;
+      if (j >= 0) (survivor ? s.to_track : s.to_birth)[j] += w;
+      const double detectable = factors.missed_detectable[row];
+      if (detectable < 0.0) continue;  // a birth, or outside the field of view
+      if (j >= 0) {
+        s.detected += w;
+      } else {
+        s.missed += w * detectable;
+      }
+    }
+  }
+  summary_ = std::move(s);
+}
+
+template <class Tracks>
 void GlmbFilter<Tracks>::propose_adaptive_births(
-    const Eigen::Ref<const Eigen::MatrixXd>& detections, const Eigen::VectorXd& assigned) {
+    const Eigen::Ref<const Eigen::MatrixXd>& detections, const Eigen::VectorXd& assigned,
+    const Eigen::VectorXd& weight) {
   adaptive_births_.clear();
   adaptive_birth_detections_.clear();
   const auto& adaptive = params_.adaptive_birth;
   if (!adaptive.enabled || detections.cols() == 0) return;
-  const Eigen::VectorXd unassigned = (1.0 - assigned.array()).max(0.0).matrix();
+  const Eigen::VectorXd unassigned =
+      ((1.0 - assigned.array()).max(0.0) * weight.array()).matrix();
   const double total = unassigned.sum();
   if (!(total > 0.0)) return;
+  // The max_births detections with the largest r_B (a stable order: ties by index).
+  std::vector<int> order(static_cast<std::size_t>(detections.cols()));
+  for (std::size_t j = 0; j < order.size(); ++j) order[j] = static_cast<int>(j);
+  const auto keep =
+      std::min<std::size_t>(order.size(), static_cast<std::size_t>(adaptive.max_births));
+  std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(keep), order.end(),
+                    [&](int a, int b) {
+                      return unassigned[a] > unassigned[b] ||
+                             (unassigned[a] == unassigned[b] && a < b);
+                    });
+  order.resize(keep);
+  std::sort(order.begin(), order.end());
   // H^+ = H^T (H H^T)^-1 maps a detection to the least-norm state that predicts it.
   const Eigen::MatrixXd& H = observation_.H;
   const Eigen::LDLT<Eigen::MatrixXd> HHt(H * H.transpose());
-  for (Eigen::Index j = 0; j < detections.cols(); ++j) {
+  for (int j : order) {
     const double r =
         std::min(adaptive.max_existence, adaptive.expected_births * unassigned[j] / total);
     // A detection that tracks explain almost surely would only add a row that stays absent.
     if (r < 1e-12) continue;
     adaptive_births_.push_back(
         {r, {H.transpose() * HHt.solve(Eigen::VectorXd(detections.col(j))), adaptive.cov}});
-    adaptive_birth_detections_.push_back(static_cast<int>(j));
+    adaptive_birth_detections_.push_back(j);
   }
 }
 
@@ -320,27 +420,48 @@ int GlmbFilter<Tracks>::map_cardinality() const {
 }
 
 template <class Tracks>
-std::vector<GlmbEstimate> GlmbFilter<Tracks>::estimates() const {
-  const std::size_t n = static_cast<std::size_t>(map_cardinality());
+void GlmbFilter<Tracks>::estimate() {
+  const EstimatorParams& e = params_.estimator;
+  auto reported = [&](int t) {
+    return std::find(reported_.begin(), reported_.end(), tracks_[t].label) != reported_.end();
+  };
   const Hypothesis* best = nullptr;
-  for (const auto& h : hypotheses_) {
-    if (h.tracks.size() == n && (!best || h.log_weight > best->log_weight)) best = &h;
-  }
-  std::vector<GlmbEstimate> out;
-  if (!best) return out;
-  for (int t : best->tracks) {
-    models::GaussianDensity m = Tracks::moments(tracks_[t].density);
-    // The label's existence probability: the weight of the hypotheses that hold it (a hypothesis
-    // holds a label at most once).
-    double existence = 0.0;
+  if (e.estimator == LabelEstimator::map) {
+    const std::size_t n = static_cast<std::size_t>(map_cardinality());
     for (const auto& h : hypotheses_) {
-      for (int u : h.tracks) {
-        if (tracks_[u].label == tracks_[t].label) existence += std::exp(h.log_weight);
+      if (h.tracks.size() == n && (!best || h.log_weight > best->log_weight)) best = &h;
+    }
+  } else {
+    // The joint MAP with the previous report (LabelEstimator::consistent).
+    double best_score = -detail::kInfinity;
+    for (const auto& h : hypotheses_) {
+      double score = h.log_weight;
+      for (int t : h.tracks) score += reported(t) ? e.keep_bonus : -e.entry_penalty;
+      if (score > best_score) {
+        best_score = score;
+        best = &h;
       }
     }
-    out.push_back({tracks_[t].label, std::move(m.mean), std::move(m.cov), std::min(existence, 1.0)});
   }
-  return out;
+  estimates_.clear();
+  reported_.clear();
+  if (!best) return;
+  // Each label's existence probability: the weight of the hypotheses that hold it (a hypothesis
+  // holds a label at most once).
+  std::vector<double> existence(tracks_.size(), 0.0);
+  for (const auto& h : hypotheses_) {
+    for (int u : h.tracks) existence[static_cast<std::size_t>(u)] += std::exp(h.log_weight);
+  }
+  for (int t : best->tracks) {
+    double r = 0.0;
+    for (std::size_t u = 0; u < tracks_.size(); ++u) {
+      if (tracks_[u].label == tracks_[t].label) r += existence[u];
+    }
+    models::GaussianDensity m = Tracks::moments(tracks_[t].density);
+    estimates_.push_back({tracks_[t].label, std::move(m.mean), std::move(m.cov), std::min(r, 1.0),
+                          tracks_[t].undetectable});
+    reported_.push_back(tracks_[t].label);
+  }
 }
 
 template <class Tracks>

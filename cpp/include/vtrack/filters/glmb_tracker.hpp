@@ -62,10 +62,16 @@ class GlmbTracker {
   // detection-only step). Returns the tracks reported at this scan, in id order: score = the
   // label's existence probability, state and covariance = the track density's moments, the
   // GLMB label (birth time, index).
+  // `input`: what the caller knows of each detection beyond its position (filters/glmb.hpp).
   const Tracks& step(const Eigen::Ref<const Eigen::MatrixXd>& detections,
-                     const cv::Mat* depth = nullptr);
+                     const cv::Mat* depth = nullptr, const ScanInput& input = {});
+  // The last scan's association statistics, and p_D from the next scan on (an online estimate).
+  const ScanSummary& summary() const;
+  void set_detection_probability(double p_d);
 
   const Tracks& tracks() const { return tracks_; }
+  // The filter's estimates at the last step (all of them, reported or not by the management).
+  const std::vector<GlmbEstimate>& estimates() const;
   Eigen::VectorXd cardinality_distribution() const;
   int map_cardinality() const;
   std::size_t hypothesis_count() const;

@@ -190,7 +190,8 @@ class ParticleGlmbFilter : public GlmbFilter<ParticleTracks> {
 
   // One joint prediction-update with the detections (z_dim x M) and, optionally, the
   // background-subtracted metric depth image of the same scan (needs a depth model; its size).
-  void step(const Eigen::Ref<const Eigen::MatrixXd>& detections, const cv::Mat* depth = nullptr);
+  void step(const Eigen::Ref<const Eigen::MatrixXd>& detections, const cv::Mat* depth = nullptr,
+            const ScanInput& input = {});
   const ParticleParams& particle_params() const { return tracks_model_.params(); }
   bool has_depth_model() const { return tracks_model_.has_depth_model(); }
 };

@@ -18,10 +18,18 @@ struct LinearGaussianMotion {
   static LinearGaussianMotion constant_velocity(int axes, double period, double sigma_v);
 };
 
-// z = H x + w,  w ~ N(0, R).
+// z = H x + w,  w ~ N(0, R(x)), R(x) = R + diag((A x)^2): a noise that may grow with the state.
 struct LinearGaussianObservation {
   Eigen::MatrixXd H;
   Eigen::MatrixXd R;
+  // A (z_dim x x_dim), or empty for the constant R: the standard deviation that component i of the
+  // noise gains per unit of (A x)_i, e.g. a box detector whose corner errors are a fraction of the
+  // box's width and height. The Kalman recursion evaluates R(x) at the predicted mean (the usual
+  // linearisation of a state-dependent noise); the particle GLMB's eq. (2) uses R alone.
+  Eigen::MatrixXd noise_scale;
+
+  // R(x) at the state x.
+  Eigen::MatrixXd noise_at(const Eigen::Ref<const Eigen::VectorXd>& x) const;
 
   // Positions of a constant-velocity state (eq. 2's H = [1 0 1 0 1 0] pattern, one row per axis)
   // with noise covariance R (axes x axes).
