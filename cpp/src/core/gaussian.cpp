@@ -8,11 +8,6 @@
 #include "vtrack/core/errors.hpp"
 
 namespace vtrack::core {
-namespace {
-
-constexpr double kLog2Pi = 1.8378770664093454835606594728112;
-
-}  // namespace
 
 Gaussian::Gaussian(Eigen::VectorXd mean, const Eigen::MatrixXd& covariance)
     : mean_(std::move(mean)) {
