@@ -386,6 +386,16 @@ BASELINES: Dict[str, Baseline] = {
         Detector(bgs="mog2", threshold=16.0, open=0, close=0, min_area=800, confidence="one"),
         Tracker("sort", (("iou_threshold", 0.1), ("max_age", 20), ("min_hits", 1))),
         (0.857, 0.993, -0.012, 0.0)),
+    "KNN + ByteTrack": Baseline(
+        Detector(bgs="knn", threshold=1600.0, open=0, close=0, min_area=400, confidence="fill"),
+        Tracker("bytetrack", (("high_conf_det_threshold", 0.4), ("lost_track_buffer", 15),
+                              ("minimum_consecutive_frames", 3), ("minimum_iou_threshold", 0.05),
+                              ("track_activation_threshold", 0.4))),
+        (0.928, 1.02, -0.015, -0.004)),
+    "KNN + SORT": Baseline(
+        Detector(bgs="knn", threshold=1600.0, open=0, close=0, min_area=400, confidence="one"),
+        Tracker("sort", (("iou_threshold", 0.1), ("max_age", 10), ("min_hits", 1))),
+        (0.904, 1.015, -0.006, -0.003)),
 }
 
 
