@@ -18,13 +18,12 @@ void bind_multi_bernoulli(py::module_& m) {
           "particles",
           [](const filters::BernoulliComponent& c) {
             // L x 4 (x, y, w, h) float32 copy.
-            const Eigen::Matrix<float, Eigen::Dynamic, 4> t = c.particles.transpose();
-            return Eigen::Matrix<float, Eigen::Dynamic, 4, Eigen::RowMajor>(t);
+            return Eigen::Matrix<float, Eigen::Dynamic, 4, Eigen::RowMajor>(c.particles.states());
           },
           "Particles as an (L, 4) float32 array of (x, y, w, h).")
       .def_property_readonly(
           "weights",
-          [](const filters::BernoulliComponent& c) { return Eigen::VectorXd(c.log_weights.array().exp()); },
+          [](const filters::BernoulliComponent& c) { return Eigen::VectorXd(c.particles.weights()); },
           "Normalised particle weights, shape (L,).")
       .def_property_readonly(
           "mean",

@@ -60,7 +60,8 @@ MultiBernoulliParams small_scene_params() {
 
 bool all_finite(const MultiBernoulliFilter& f) {
   for (const auto& c : f.components()) {
-    if (!std::isfinite(c.existence) || !c.particles.allFinite() || !c.log_weights.allFinite())
+    if (!std::isfinite(c.existence) || !c.particles.states().allFinite() ||
+        !c.particles.log_weights().allFinite())
       return false;
   }
   return true;
@@ -128,9 +129,9 @@ TEST(MultiBernoulli, ExistenceRisesWithKnownRhoAboveOne) {
 TEST(MultiBernoulli, MergeKeepsTheOlderLabelAndMixesByExistence) {
   using vtrack::filters::BernoulliComponent;
   auto component = [](std::uint64_t label, double r, float x, int n) {
-    BernoulliComponent c{label, 0, r, BoxStates(4, n), Eigen::VectorXd::Constant(n, -std::log(n))};
-    for (int j = 0; j < n; ++j) c.particles.col(j) << x + 0.1f * j, 10.f, 20.f, 40.f;
-    return c;
+    vtrack::filters::BoxParticles::States states(n, 4);
+    for (int j = 0; j < n; ++j) states.row(j) << x + 0.1f * j, 10.f, 20.f, 40.f;
+    return BernoulliComponent{label, 0, r, vtrack::filters::BoxParticles(std::move(states))};
   };
   std::vector<BernoulliComponent> cs = {component(4, 0.9, 10, 10), component(7, 0.5, 14, 20),
                                         component(9, 0.6, 100, 5)};
@@ -140,8 +141,8 @@ TEST(MultiBernoulli, MergeKeepsTheOlderLabelAndMixesByExistence) {
   EXPECT_EQ(cs[0].label, 4u);  // the older label survives
   EXPECT_EQ(cs[1].label, 9u);  // the distant one is untouched
   EXPECT_NEAR(cs[0].existence, 1 - 0.1 * 0.5, 1e-12);
-  ASSERT_EQ(cs[0].particles.cols(), 30);
-  const Eigen::VectorXd w = cs[0].log_weights.array().exp();
+  ASSERT_EQ(cs[0].particles.size(), 30);
+  const Eigen::VectorXd w = cs[0].particles.log_weights().array().exp();
   EXPECT_NEAR(w.sum(), 1.0, 1e-12);
   EXPECT_NEAR(w.head(10).sum(), 0.9 / 1.4, 1e-12);  // mixture weights proportional to r
   vtrack::filters::merge_overlapping(cs, 0.6, 0.999);  // nothing left to merge
@@ -239,8 +240,8 @@ TEST(MultiBernoulli, ParticleCountsFollowExistence) {
   for (int k = 0; k < 6; ++k) f.step(scene({{60, 40, 12, 30}}));
   for (const auto& c : f.components()) {
     const auto expected = std::clamp<double>(std::ceil(c.existence * 300), 20, 300);
-    EXPECT_EQ(c.particles.cols(), static_cast<Eigen::Index>(expected));
-    EXPECT_NEAR(c.log_weights.array().exp().sum(), 1.0, 1e-9);
+    EXPECT_EQ(c.particles.size(), static_cast<Eigen::Index>(expected));
+    EXPECT_NEAR(c.particles.log_weights().array().exp().sum(), 1.0, 1e-9);
   }
 }
 

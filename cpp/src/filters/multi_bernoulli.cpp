@@ -133,8 +133,7 @@ void validate(const MultiBernoulliParams& p) {
 }
 
 Eigen::Vector4f BernoulliComponent::mean() const {
-  const Eigen::VectorXd w = log_weights.array().exp();
-  return (particles.cast<double>() * w / w.sum()).cast<float>();
+  return particles.mean().cast<float>();
 }
 
 double box_overlap(const Eigen::Vector4f& a, const Eigen::Vector4f& b) {
@@ -173,14 +172,22 @@ PersonSizePrior person_size_prior(const MultiBernoulliParams& p, double width, d
 MultiBernoulliFilter::MultiBernoulliFilter(int width, int height,
                                            const MultiBernoulliParams& params)
     : params_(validated(params)), width_(width), height_(height), rng_(params.seed),
-      likelihood_(params.likelihood), size_estimator_(params.size_half_life > 0.0 ? params.size_half_life
-                                                : std::numeric_limits<double>::infinity()),
+      likelihood_(params.likelihood),
+      size_estimator_(params.size_half_life > 0.0 ? params.size_half_life
+                                                  : std::numeric_limits<double>::infinity()),
       management_(params.management) {
   if (width < 1) throw InvalidArgument("width must be >= 1, got " + std::to_string(width));
   if (height < 1) throw InvalidArgument("height must be >= 1, got " + std::to_string(height));
   const double h = params_.height_mean > 0.0 ? params_.height_mean : params_.size_initial * height;
-  size_ = person_size_prior(params_, params_.width_mean, h);
+  set_size_prior(person_size_prior(params_, params_.width_mean, h));
+}
+
+void MultiBernoulliFilter::set_size_prior(const PersonSizePrior& size) {
+  size_ = size;
   likelihood_.set_person_size(size_.width, size_.height);
+  // Eq. (22)'s random walk, in pixels of the current prior.
+  motion_ = models::RandomWalk(models::RandomWalkParams{
+      {size_.sigma_xy, size_.sigma_xy, size_.sigma_wh, size_.sigma_wh}, 4});
 }
 
 void MultiBernoulliFilter::update_size_prior() {
@@ -192,9 +199,9 @@ void MultiBernoulliFilter::update_size_prior() {
   if (!size_.learnt && size_estimator_.weight() < size_.width * size_.height) return;
   const double h = params_.size_from_foreground * size_estimator_.median_height();
   if (!(h > 0.0)) return;
-  size_ = person_size_prior(params_, params_.width_mean, h);
-  size_.learnt = true;
-  likelihood_.set_person_size(size_.width, size_.height);
+  PersonSizePrior size = person_size_prior(params_, params_.width_mean, h);
+  size.learnt = true;
+  set_size_prior(size);
 }
 
 const Tracks& MultiBernoulliFilter::step(const cv::Mat& y) {
@@ -275,26 +282,31 @@ void MultiBernoulliFilter::manage_tracks() {
   }
 }
 
-void MultiBernoulliFilter::clamp_sizes(BoxStates& s) const {
-  s.row(2) = s.row(2).cwiseMax(float(size_.width_min)).cwiseMin(float(size_.width_max));
-  s.row(3) = s.row(3).cwiseMax(float(size_.height_min)).cwiseMin(float(size_.height_max));
+void MultiBernoulliFilter::clamp_sizes(BoxParticles::States& s) const {
+  s.col(2) = s.col(2).cwiseMax(float(size_.width_min)).cwiseMin(float(size_.width_max));
+  s.col(3) = s.col(3).cwiseMax(float(size_.height_min)).cwiseMin(float(size_.height_max));
 }
 
 void MultiBernoulliFilter::predict() {
-  // Eq. (22): r <- P_S r; x <- x + e with e ~ N(0, diag(sigma^2)); weights unchanged.
-  const Eigen::Array4f sigma(float(size_.sigma_xy), float(size_.sigma_xy), float(size_.sigma_wh),
-                             float(size_.sigma_wh));
+  // Eq. (22): r <- P_S r; x <- x + e with e ~ N(0, diag(sigma^2)) (motion_, sigmas relative to
+  // the size prior); weights unchanged.
   for (auto& c : components_) {
     c.existence *= params_.survival_probability;
-    const auto n = static_cast<std::size_t>(c.particles.cols());
-    noise_.resize(4 * n);
+    const Eigen::Index n = c.particles.size();
+    // The normals are drawn particle by particle (each particle's four in a row), the order this
+    // filter has always used, so a seed gives the tracks it gave; the engine's eps is n x 4.
+    noise_.resize(4 * static_cast<std::size_t>(n));
     rng_.fill_normal(noise_.data(), noise_.size());
-    const Eigen::Map<const BoxStates> e(noise_.data(), 4, c.particles.cols());
-    c.particles += (e.array().colwise() * sigma).matrix();
+    eps_ = Eigen::Map<const BoxStates>(noise_.data(), 4, n).transpose();
+    next_.resize(n, 4);
+    motion_.propagate(models::StatesView<float>(c.particles.states()),
+                      models::StatesView<float>(eps_), models::MutableStatesView<float>(next_));
+    std::swap(c.particles.states(), next_);
     // Beyond the paper: the drift v of MultiBernoulliParams::velocity_smoothing (zero when off).
-    c.particles.row(0).array() += c.record.velocity[0];
-    c.particles.row(1).array() += c.record.velocity[1];
-    clamp_sizes(c.particles);
+    auto& x = c.particles.states();
+    x.col(0).array() += c.record.velocity[0];
+    x.col(1).array() += c.record.velocity[1];
+    clamp_sizes(x);
   }
 }
 
@@ -302,8 +314,7 @@ void MultiBernoulliFilter::add_birth(double existence, double cx_lo, double cx_h
                                      double cy_hi, const Eigen::Vector2d& size,
                                      const Eigen::Vector2d& size_std) {
   const int n = params_.birth_particles;
-  BernoulliComponent c{next_label_++, frame_, existence, BoxStates(4, n),
-                       Eigen::VectorXd::Constant(n, -std::log(double(n)))};
+  BoxParticles::States x(n, 4);
   // 2n uniforms for the centres, 2n normals for the sizes, drawn in batches.
   std::vector<double> u(2 * static_cast<std::size_t>(n));
   std::vector<double> z(2 * static_cast<std::size_t>(n));
@@ -317,9 +328,10 @@ void MultiBernoulliFilter::add_birth(double existence, double cx_lo, double cx_h
                                 size_.height_max);
     const double cx = cx_lo + (cx_hi - cx_lo) * u[2 * j];
     const double cy = cy_lo + (cy_hi - cy_lo) * u[2 * j + 1];
-    c.particles.col(j) << float(cx - 0.5 * w), float(cy - 0.5 * h), float(w), float(h);
+    x.row(j) << float(cx - 0.5 * w), float(cy - 0.5 * h), float(w), float(h);
   }
-  components_.push_back(std::move(c));
+  // Equal weights 1/n.
+  components_.push_back({next_label_++, frame_, existence, BoxParticles(std::move(x))});
 }
 
 void MultiBernoulliFilter::add_quarter_births() {
@@ -401,11 +413,12 @@ void MultiBernoulliFilter::update() {
       const bool established = frame_ - covered_births_[k] >= params_.established_age;
       if (covered_labels_[k] != c.label && (older || established)) explained_.push_back(covered_[k]);
     }
-    likelihood_.log_likelihood(c.particles, log_g_, explained_);
-    // rho = sum_j w_j g_y(x_j) (eq. 23-24), in logs: log_sum_exp(log w + log g).
-    c.log_weights += log_g_;
-    const double log_rho = core::log_sum_exp(c.log_weights);
-    c.log_weights.array() -= log_rho;  // eq. (24)
+    // (The likelihood reads boxes as columns: a 4 x L copy, small next to its per-box sums.)
+    likelihood_.log_likelihood(c.particles.states().transpose(), log_g_, explained_);
+    // Eq. (24), w_j <- w_j g_y(x_j) / rho, is the engine's reweighting, and its log normaliser
+    // is log rho = log sum_j w_j g_y(x_j) of eq. (23). (Should every g_y underflow, rho = 0: the
+    // weights are kept and r drops to 0, to be pruned.)
+    const double log_rho = c.particles.reweight(log_g_).log_normaliser;
     c.existence = std::min(updated_existence(c.existence, log_rho), params_.max_existence);
   }
 }
@@ -438,17 +451,15 @@ void merge_overlapping(std::vector<BernoulliComponent>& components, double min_o
       if (absorbed) absorbed->push_back(b);
       // The merged Bernoulli exists if either does: r = 1 - (1 - r_a)(1 - r_b); its density is
       // the r-weighted mixture of the two particle sets.
-      const Eigen::Index na = a.particles.cols();
-      const Eigen::Index nb = b.particles.cols();
-      BoxStates particles(4, na + nb);
-      particles << a.particles, b.particles;
+      const Eigen::Index na = a.particles.size();
+      const Eigen::Index nb = b.particles.size();
+      BoxParticles::States x(na + nb, 4);
+      x << a.particles.states(), b.particles.states();
       Eigen::VectorXd lw(na + nb);
       // (r > 0 unless the prune threshold is 0; the floor keeps the logs finite.)
-      lw << a.log_weights.array() + std::log(std::max(a.existence, 1e-300)),
-          b.log_weights.array() + std::log(std::max(b.existence, 1e-300));
-      lw.array() -= core::log_sum_exp(lw);
-      a.particles = std::move(particles);
-      a.log_weights = std::move(lw);
+      lw << a.particles.log_weights().array() + std::log(std::max(a.existence, 1e-300)),
+          b.particles.log_weights().array() + std::log(std::max(b.existence, 1e-300));
+      a.particles = BoxParticles(std::move(x), lw);  // normalises the weights
       a.existence = std::min(1.0 - (1.0 - a.existence) * (1.0 - b.existence), max_existence);
       means[i] = a.mean();
       merged[j] = true;
@@ -485,13 +496,7 @@ void MultiBernoulliFilter::resample() {
     const auto count = static_cast<std::size_t>(std::clamp<double>(
         std::ceil(c.existence * params_.max_particles), params_.min_particles,
         params_.max_particles));
-    const Eigen::VectorXd w = c.log_weights.array().exp();
-    const std::vector<std::int64_t> idx = core::resample(params_.resampling, w, count, rng_);
-    BoxStates next(4, static_cast<Eigen::Index>(count));
-    for (std::size_t j = 0; j < count; ++j) next.col(j) = c.particles.col(idx[j]);
-    c.particles = std::move(next);
-    c.log_weights = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(count),
-                                              -std::log(double(count)));
+    c.particles.resample(params_.resampling, static_cast<Eigen::Index>(count), rng_);
   }
 }
 

@@ -33,8 +33,10 @@
 #include "vtrack/core/resampling.hpp"
 #include "vtrack/filters/track_management.hpp"
 #include "vtrack/filters/tracks.hpp"
+#include "vtrack/models/motion.hpp"
 #include "vtrack/models/person_size.hpp"
 #include "vtrack/models/tbd_likelihood.hpp"
+#include "vtrack/smc/particle_set.hpp"
 
 namespace vtrack::filters {
 
@@ -201,17 +203,20 @@ struct MultiBernoulliParams {
 // Throws InvalidArgument naming the parameter and its value when one is out of range.
 void validate(const MultiBernoulliParams& params);
 
+// A component's weighted particle set {x_j, w_j} of eq. (21): L box states (x, y, w, h), one per
+// row (the SMC engine's layout, smc/particle_set.hpp), with normalised log-domain weights.
+using BoxParticles = smc::ParticleSet<float, 4>;
+
 struct BernoulliComponent {
   std::uint64_t label;
   int birth_frame;    // step index (0-based) at which the component was born
   double existence;   // r
-  BoxStates particles;        // 4 x L
-  Eigen::VectorXd log_weights;  // normalised: log_sum_exp = 0
+  BoxParticles particles;
   // Track management (MultiBernoulliParams::management); record.velocity is also the drift of
   // the prediction (velocity_smoothing).
   TrackRecord record;
   Eigen::Vector4f last_mean = Eigen::Vector4f::Zero();  // estimate at the previous step
-  // Weighted mean box.
+  // Weighted mean box (the engine's estimate, part-based eq. 8).
   Eigen::Vector4f mean() const;
 };
 
@@ -260,9 +265,12 @@ class MultiBernoulliFilter {
   void update();
   void prune_and_merge();
   void resample();
-  void clamp_sizes(BoxStates& states) const;
-  // Observes y's foreground and updates size_ (and the likelihood's person size) when learning.
+  void clamp_sizes(BoxParticles::States& states) const;
+  // Observes y's foreground and updates size_ (and the likelihood's person size and the random
+  // walk's sigmas) when learning.
   void update_size_prior();
+  // Sets size_ and what depends on it: the likelihood's person size and motion_'s sigmas.
+  void set_size_prior(const PersonSizePrior& size);
   // Confirmation, relabelling from the lost memory and velocities; fills tracks_.
   void manage_tracks();
 
@@ -270,6 +278,9 @@ class MultiBernoulliFilter {
   int width_;
   int height_;
   core::Rng rng_;
+  // Eq. (22)'s random walk x + e, e ~ N(0, diag(sx^2, sx^2, sw^2, sw^2)), sx = sigma_xy h and sw =
+  // sigma_wh h for the size prior's mean height h (set_size_prior).
+  models::RandomWalk motion_;
   models::TbdLikelihood likelihood_;
   models::ForegroundSizeEstimator size_estimator_;
   PersonSizePrior size_;
@@ -285,6 +296,8 @@ class MultiBernoulliFilter {
   std::vector<image::Rect> covered_;
   std::vector<image::Rect> explained_;
   std::vector<float> noise_;
+  BoxParticles::States eps_;
+  BoxParticles::States next_;
   Eigen::VectorXd log_g_;
 };
 
