@@ -41,7 +41,9 @@ Measured 2026-11-24 (seed 0; `python benchmarks/pets09.py --variants V`, one var
 the machine was shared, load ~10 on 2 cores, so the frames/s column is only a lower bound --
 benchmarks/track_video.py measures speed). Measured before the filter moved onto the SMC engine
 (issue 10; see the end of this docstring: it changes the tracks at a given seed), to be measured
-again.
+again. After the merge (this branch on the engine, seed 0, MOTA / IDF1 on all / 1-397 / 398-795):
+768 x 576 through the CLI (`vtrack track vtest.avi --method mb`, the same pipeline) 0.526 /
+0.470 on all frames (HOTA 0.373); 0.5x 0.503 / 0.490, 0.526 / 0.586, 0.481 / 0.406.
 
 768 x 576 (as shipped; everything tuned on its frames 1-397):
 
