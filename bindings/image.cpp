@@ -57,6 +57,9 @@ eq. 10 as printed). Not safe to share one model between threads.
           },
           py::arg("frame"),
           "Consume the next H x W x 3 uint8 BGR frame; return y (H x W float32, 1 = background).")
+      .def("set_closing", &KdeBackground::set_closing, py::arg("size"),
+           "Change the closing's side (0, 1 or odd) from the next frame on; track_video's mb "
+           "pipeline sets it to MultiBernoulliTracker.closing_pixels after every frame.")
       .def("freeze", &KdeBackground::freeze, "Stop storing samples (the model stays fixed).")
       .def("resume", &KdeBackground::resume, "Store samples again on the K0 schedule.")
       .def("reset", &KdeBackground::reset,

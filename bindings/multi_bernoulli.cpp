@@ -73,6 +73,24 @@ the box calibration).
           "Copies of all Bernoulli components after the last step (for debugging and plots).")
       .def_property_readonly("frame", &MultiBernoulliFilter::frame, "Number of steps taken.")
       .def_property_readonly(
+          "closing_pixels", [](const MultiBernoulliFilter& f) { return f.likelihood().closing_pixels(); },
+          "The side of the closing the tracker applies to y (pixels; 0 or 1: none): closing_size, "
+          "or closing_ratio x the learnt person height.")
+      .def_property_readonly(
+          "size_prior",
+          [](const MultiBernoulliFilter& f) {
+            const auto& s = f.size_prior();
+            py::dict d;
+            d["width"] = s.width;
+            d["height"] = s.height;
+            d["width_range"] = py::make_tuple(s.width_min, s.width_max);
+            d["height_range"] = py::make_tuple(s.height_min, s.height_max);
+            d["learnt"] = s.learnt;
+            return d;
+          },
+          "The people size prior in force, in pixels: mean width and height, the ranges boxes are "
+          "clamped to, and whether it was learnt from the foreground (see height_mean).")
+      .def_property_readonly(
           "image_size",
           [](const MultiBernoulliFilter& f) { return py::make_tuple(f.width(), f.height()); });
   def_params<MultiBernoulliParams>(cls, [](const MultiBernoulliFilter& f) { return f.params(); });

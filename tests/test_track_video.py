@@ -12,13 +12,11 @@ from vtrack.evaluate import evaluate
 from vtrack.io import read_mot
 from vtrack.synthetic import make_scene
 
-# The people of these 320 x 240 scenes are 14-24 px wide and 36-60 px tall; the tracker's size
-# prior defaults are for PETS09 at 768 x 576, so the scenes state their own.
+# The people of these 320 x 240 scenes are 14-24 px wide and 36-60 px tall; the tracker learns
+# that from the foreground (its size prior defaults are relative to the learnt height).
 # Their ground-truth boxes are the blobs' exact extents, the foreground box the filter estimates,
 # so it is reported unscaled (the default box_scale_* / box_offset_* map to PETS09's annotations).
-SIZE_PRIOR = dict(width_mean=19.0, width_std=4.0, width_min=10.0, width_max=30.0,
-                  height_mean=48.0, height_std=8.0, height_min=30.0, height_max=70.0,
-                  box_scale_w=1.0, box_scale_h=1.0, box_offset_x=0.0, box_offset_y=0.0)
+FOREGROUND_BOX = dict(box_scale_w=1.0, box_scale_h=1.0, box_offset_x=0.0, box_offset_y=0.0)
 
 
 @pytest.fixture(scope="module")
@@ -42,7 +40,7 @@ def scenes(tmp_path_factory):
 @pytest.mark.parametrize("seed", [3, 4])
 def test_tracks_synthetic_people_end_to_end(scenes, seed):
     scene, path = scenes[seed]
-    rows = vtrack.track_video(path, seed=0, **SIZE_PRIOR)
+    rows = vtrack.track_video(path, seed=0, **FOREGROUND_BOX)
     assert rows.shape[1] == 10 and rows[:, 0].min() >= 1
     metrics = evaluate(scene.gt_rows(), rows)
     # Measured MOTA 0.91 (scene 3; 0.94 with the KDE's paper stack, update_threshold 0) and 0.94
@@ -68,17 +66,17 @@ def test_illumination_compensation_handles_a_faster_light_change(tmp_path):
     for k in range(len(scene)):
         writer.write(scene.frame(k))
     writer.release()
-    plain = evaluate(scene.gt_rows(), vtrack.track_video(path, seed=0, **SIZE_PRIOR))
+    plain = evaluate(scene.gt_rows(), vtrack.track_video(path, seed=0, **FOREGROUND_BOX))
     compensated = evaluate(scene.gt_rows(), vtrack.track_video(
-        path, seed=0, illumination_compensation=True, **SIZE_PRIOR))
+        path, seed=0, illumination_compensation=True, **FOREGROUND_BOX))
     assert compensated["MOTA"] > 0.85 and compensated["IDF1"] > 0.9, compensated
     assert compensated["FP"] < plain["FP"], (plain, compensated)
 
 
 def test_same_seed_same_tracks_and_parameters_are_checked(scenes):
     _, path = scenes[3]
-    a = vtrack.track_video(path, seed=5, **SIZE_PRIOR)
-    b = vtrack.track_video(path, config={"background": {"threads": 1}}, seed=5, **SIZE_PRIOR)
+    a = vtrack.track_video(path, seed=5, **FOREGROUND_BOX)
+    b = vtrack.track_video(path, config={"background": {"threads": 1}}, seed=5, **FOREGROUND_BOX)
     np.testing.assert_array_equal(a, b)
     with pytest.raises(TypeError, match="no_such"):
         vtrack.track_video(path, no_such=1)
@@ -86,8 +84,8 @@ def test_same_seed_same_tracks_and_parameters_are_checked(scenes):
         vtrack.track_video(path, bandwith=(0.1, 0.1, 0.1))
     with pytest.raises(TypeError, match="bandwidth must be a sequence of numbers"):
         vtrack.track_video(path, config={"background": {"bandwidth": 0.1}})
-    with pytest.raises(ValueError, match="sigma_x"):
-        vtrack.track_video(path, sigma_x=-1.0)
+    with pytest.raises(ValueError, match="sigma_xy"):
+        vtrack.track_video(path, sigma_xy=-1.0)
     with pytest.raises(ValueError, match="method glmb needs a detector"):
         vtrack.track_video(path, method="glmb")
     with pytest.raises(ValueError, match="method must be one of mb, glmb, got 'sort'"):
@@ -100,19 +98,19 @@ def test_cli_track_writes_tracks_and_render(vtrack_cli, scenes, tmp_path):
     scene, path = scenes[4]
     config = tmp_path / "params.yml"
     config.write_text("seed: 2\ntracker:\n" +
-                      "".join(f"  {k}: {v}\n" for k, v in SIZE_PRIOR.items()))
+                      "".join(f"  {k}: {v}\n" for k, v in FOREGROUND_BOX.items()))
     out, render = tmp_path / "tracks.txt", tmp_path / "tracks.avi"
     result = vtrack_cli("track", path, "--out", out, "--render", render, "--config", config)
     assert result.returncode == 0, result.stderr
     assert "track: frame 150/150" in result.stderr  # progress on stderr
     rows = read_mot(out)
-    np.testing.assert_allclose(rows, vtrack.track_video(path, seed=2, **SIZE_PRIOR), atol=0.006)
+    np.testing.assert_allclose(rows, vtrack.track_video(path, seed=2, **FOREGROUND_BOX), atol=0.006)
     assert vtrack.io.probe_video(render).frame_count == 150
     # JSON config and --set give the same parameters.
     config_json = tmp_path / "params.json"
-    config_json.write_text(json.dumps({"seed": 2, "tracker": {"width_mean": 19.0}}))
+    config_json.write_text(json.dumps({"seed": 2, "tracker": {"box_scale_w": 1.0}}))
     out2 = tmp_path / "tracks2.txt"
-    sets = [a for k, v in SIZE_PRIOR.items() if k != "width_mean" for a in ("--set", f"{k}={v}")]
+    sets = [a for k, v in FOREGROUND_BOX.items() if k != "box_scale_w" for a in ("--set", f"{k}={v}")]
     result = vtrack_cli("track", path, "--out", out2, "--config", config_json, *sets)
     assert result.returncode == 0, result.stderr
     assert out2.read_text() == out.read_text()
@@ -130,7 +128,7 @@ def test_cli_track_errors_leave_nothing_behind(vtrack_cli, scenes, write_video, 
     cases = [
         (("track", tmp_path / "missing.avi", "--out", out), 1, "no such file"),
         (("track", truncated, "--out", out, "--render", render), 1, "frame"),
-        (("track", path, "--out", out, "--set", "sigma_x=-1"), 2, "sigma_x"),
+        (("track", path, "--out", out, "--set", "sigma_xy=-1"), 2, "sigma_xy"),
         (("track", path, "--out", out, "--set", "nope=1"), 2, "nope"),
         (("track", path, "--out", out, "--method", "glmb"), 2, "method"),
         (("track", path), 2, "--out"),

@@ -28,7 +28,11 @@ using vtrack::core::ParameterValue;
 
 // A value of the same kind as `v` but different from it.
 ParameterValue changed(const ParameterValue& v, const std::vector<std::string>& choices) {
-  if (const auto* d = std::get_if<double>(&v)) return std::isfinite(*d) ? *d * 0.5 + 0.125 : 0.25;
+  if (const auto* d = std::get_if<double>(&v)) {
+    if (!std::isfinite(*d)) return 0.25;
+    const double c = *d * 0.5 + 0.125;  // 0.25 is this map's fixed point
+    return c != *d ? c : *d + 1.0;
+  }
   if (const auto* i = std::get_if<std::int64_t>(&v)) return *i + 1;
   if (const auto* u = std::get_if<std::uint64_t>(&v)) return *u + 1;
   if (const auto* b = std::get_if<bool>(&v)) return !*b;
@@ -83,7 +87,7 @@ TEST(Parameters, EveryTableReachesEveryField) {
 TEST(Parameters, KindsAreCheckedAndNumbersNeverNarrowSilently) {
   vtrack::filters::MultiBernoulliParams p;
   const auto& t = vtrack::filters::MultiBernoulliParams::table();
-  EXPECT_THROW(t.set(p, "sigma_x", std::string("abc")), InvalidType);
+  EXPECT_THROW(t.set(p, "sigma_xy", std::string("abc")), InvalidType);
   EXPECT_THROW(t.set(p, "max_particles", 2.5), InvalidType);  // a real is never truncated
   EXPECT_THROW(t.set(p, "quarter_birth", std::int64_t{1}), InvalidType);
   EXPECT_THROW(t.set(p, "resampling", std::string("best")), InvalidArgument);
@@ -93,8 +97,8 @@ TEST(Parameters, KindsAreCheckedAndNumbersNeverNarrowSilently) {
   // Seeds take the whole unsigned 64-bit range.
   ASSERT_TRUE(t.set(p, "seed", std::numeric_limits<std::uint64_t>::max()));
   EXPECT_EQ(p.seed, std::numeric_limits<std::uint64_t>::max());
-  ASSERT_TRUE(t.set(p, "sigma_x", std::int64_t{7}));  // an integer is a real
-  EXPECT_EQ(p.sigma_x, 7.0);
+  ASSERT_TRUE(t.set(p, "sigma_xy", std::int64_t{7}));  // an integer is a real
+  EXPECT_EQ(p.sigma_xy, 7.0);
   vtrack::image::KdeBackgroundParams k;
   EXPECT_THROW(vtrack::core::set_parameters(k, {{"bandwidth", std::vector<double>{0.1, 0.2}}}, "background"),
                InvalidType);
@@ -164,12 +168,12 @@ TEST(Config, BadFilesNameTheProblem) {
   EXPECT_NE(message("tracker: {delta_f: [1\n").find("line 2, column 1"), std::string::npos);
   EXPECT_NE(message("seed: 99999999999999999999\n").find("seed"), std::string::npos);
   EXPECT_NE(message("seed: -1\n").find("seed"), std::string::npos);
-  EXPECT_NE(message("tracker: {sigma_x: abc}\n").find("sigma_x must be a number"), std::string::npos);
+  EXPECT_NE(message("tracker: {sigma_xy: abc}\n").find("sigma_xy must be a number"), std::string::npos);
   EXPECT_NE(message("tracker: {delta_bb: 1}\n").find("did you mean 'delta_b'"), std::string::npos);
   EXPECT_NE(message("detector: {win_stride: 8}\n").find("no section 'detector'"), std::string::npos);
-  EXPECT_NE(message("tracker: {sigma_x: 1}\ntracker: {sigma_x: 2}\n").find("line 2: 'tracker' appears twice"),
+  EXPECT_NE(message("tracker: {sigma_xy: 1}\ntracker: {sigma_xy: 2}\n").find("line 2: 'tracker' appears twice"),
             std::string::npos);
-  EXPECT_NE(message("tracker: {sigma_x: 1, sigma_x: 2}\n").find("appears twice"), std::string::npos);
+  EXPECT_NE(message("tracker: {sigma_xy: 1, sigma_xy: 2}\n").find("appears twice"), std::string::npos);
   EXPECT_NE(message("[1, 2]\n").find("map of sections"), std::string::npos);
   EXPECT_NE(message("tracker: 5\n").find("must be a map"), std::string::npos);
   EXPECT_NE(message("a: " + std::string(50000, '[') + "\n").find("nested deeper"), std::string::npos);

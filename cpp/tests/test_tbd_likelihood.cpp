@@ -4,9 +4,11 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "vtrack/core/errors.hpp"
 #include "vtrack/core/random.hpp"
@@ -69,12 +71,20 @@ double brute_force_log_ratio(const cv::Mat& y, const std::vector<std::array<floa
   return log_gb + log_gf - log_f;
 }
 
+// Eq. (20) as printed: delta_B relative to the image's pixel count m, no closing.
+TbdLikelihoodParams printed() {
+  TbdLikelihoodParams p;
+  p.delta_b = 2e-3;
+  p.delta_b_reference = TbdLikelihoodParams::DeltaBReference::image;
+  p.closing_ratio = 0.0;
+  return p;
+}
+
 }  // namespace
 
 TEST(TbdLikelihood, SeparableFormMatchesBruteForceOfEq19) {
   vtrack::core::Rng rng(5);
-  TbdLikelihoodParams p;
-  p.closing_size = 0;
+  TbdLikelihoodParams p = printed();
   p.delta_f = 0.3;
   p.delta_b = 0.05;
   for (int trial = 0; trial < 30; ++trial) {
@@ -100,8 +110,7 @@ TEST(TbdLikelihood, SeparableFormMatchesBruteForceOfEq19) {
 // regions as `explained` equals evaluating it on an image where they are set to 1.
 TEST(TbdLikelihood, ExplainedRegionsAreBackgroundAsInEq13) {
   vtrack::core::Rng rng(8);
-  TbdLikelihoodParams p;
-  p.closing_size = 0;
+  const TbdLikelihoodParams p = printed();
   for (int trial = 0; trial < 30; ++trial) {
     const cv::Mat y = random_image(40, 50, rng);
     // Two disjoint rectangles (columns < 34 and >= 35), partly outside the image at times.
@@ -126,7 +135,7 @@ TEST(TbdLikelihood, ExplainedRegionsAreBackgroundAsInEq13) {
 TEST(TbdLikelihood, BatchedEqualsSingle) {
   vtrack::core::Rng rng(6);
   const cv::Mat y = random_image(40, 50, rng);
-  TbdLikelihood lik;
+  TbdLikelihood lik(printed());
   lik.set_image(y);
   BoxStates s(4, 100);
   for (int j = 0; j < 100; ++j)
@@ -142,7 +151,8 @@ TEST(TbdLikelihood, BatchedEqualsSingle) {
 TEST(TbdLikelihood, ForegroundScoresAboveOneBackgroundBelow) {
   cv::Mat y(100, 120, CV_32F, cv::Scalar(1.0f));
   y(cv::Rect(40, 20, 20, 50)).setTo(0.1f);
-  TbdLikelihood lik;
+  TbdLikelihood lik;  // the defaults: delta_B relative to the person size
+  lik.set_person_size(20, 50);
   lik.set_image(y);
   const double on = lik.log_likelihood(40, 20, 20, 50);
   EXPECT_GT(on, 0.0);                                     // rho > 1 raises r (eq. 23)
@@ -155,6 +165,7 @@ TEST(TbdLikelihood, AllBackgroundAndAllForegroundAreFinite) {
   for (float v : {0.0f, 1.0f}) {
     cv::Mat y(30, 40, CV_32F, cv::Scalar(v));
     TbdLikelihood lik;
+    lik.set_person_size(8, 20);
     lik.set_image(y);
     for (float w : {0.0f, 1.0f, 10.0f, 100.0f}) {
       const double l = lik.log_likelihood(5, 5, w, w);
@@ -168,13 +179,66 @@ TEST(TbdLikelihood, ClosingRemovesSpecks) {
   cv::Mat y(40, 40, CV_32F, cv::Scalar(1.0f));
   y.at<float>(20, 20) = 0.0f;  // a one-pixel speck
   y(cv::Rect(5, 5, 6, 6)).setTo(0.0f);  // a blob larger than the element survives
-  TbdLikelihoodParams p;
+  TbdLikelihoodParams p = printed();
   p.closing_size = 3;
   TbdLikelihood lik(p);
   lik.set_image(y);
   EXPECT_FLOAT_EQ(lik.processed_image().at<float>(20, 20), 1.0f);
   EXPECT_DOUBLE_EQ(lik.integral().sum({15, 15, 10, 10}), 100.0);
   EXPECT_DOUBLE_EQ(lik.integral().sum({5, 5, 6, 6}), 0.0);
+}
+
+// closing_size 0: the closing's side follows the person height (closing_ratio x height, to the
+// odd number 2k + 1 for a product in [2k, 2k + 2)); below 2 px there is none.
+TEST(TbdLikelihood, ClosingFollowsThePersonHeight) {
+  TbdLikelihoodParams p;  // closing_size 0, closing_ratio 0.06
+  TbdLikelihood lik(p);
+  for (const auto& [height, side] : std::vector<std::pair<double, int>>{
+           {20.0, 1}, {33.0, 1}, {34.0, 3}, {85.0, 5}, {99.0, 5}, {100.0, 7}, {127.5, 7},
+           {200.0, 13}}) {
+    lik.set_person_size(0.35 * height, height);
+    EXPECT_EQ(lik.closing_pixels(), side) << height;
+  }
+  cv::Mat y(40, 40, CV_32F, cv::Scalar(1.0f));
+  y.at<float>(20, 20) = 0.0f;
+  lik.set_person_size(10, 30);  // 1.8 px: no closing, the speck stays
+  lik.set_image(y);
+  EXPECT_FLOAT_EQ(lik.processed_image().at<float>(20, 20), 0.0f);
+  lik.set_person_size(20, 60);  // 3.6 px: 3 x 3
+  lik.set_image(y);
+  EXPECT_FLOAT_EQ(lik.processed_image().at<float>(20, 20), 1.0f);
+}
+
+// With delta_b_reference "person" a person's score does not depend on the image around them nor
+// on the resolution: the same person in a larger image (a crop, inverted) and the whole scene
+// upsampled 2x (boxes and person size 2x) score the same. With "image" (eq. 20 as printed) the
+// larger image lowers the reward m_x (1 - ybar) / (m delta_B).
+TEST(TbdLikelihood, PersonReferenceIsScaleFree) {
+  cv::Mat y(100, 120, CV_32F, cv::Scalar(0.95f));
+  y(cv::Rect(40, 20, 20, 50)).setTo(0.1f);
+  cv::Mat large(200, 240, CV_32F, cv::Scalar(0.95f));
+  y.copyTo(large(cv::Rect(0, 0, 120, 100)));
+  cv::Mat up;
+  cv::resize(y, up, cv::Size(240, 200), 0, 0, cv::INTER_NEAREST);
+  TbdLikelihoodParams person;
+  person.closing_ratio = 0.0;
+  person.delta_b_reference = TbdLikelihoodParams::DeltaBReference::person;
+  person.delta_b = 0.35;
+  TbdLikelihood a(person), b(person), c(person);
+  a.set_person_size(20, 50);
+  b.set_person_size(20, 50);
+  c.set_person_size(40, 100);
+  a.set_image(y);
+  b.set_image(large);
+  c.set_image(up);
+  const double score = a.log_likelihood(38, 18, 24, 54);
+  EXPECT_GT(score, 0.0);
+  EXPECT_NEAR(b.log_likelihood(38, 18, 24, 54), score, 1e-9);
+  EXPECT_NEAR(c.log_likelihood(76, 36, 48, 108), score, 1e-9);
+  TbdLikelihood d(printed()), e(printed());
+  d.set_image(y);
+  e.set_image(large);
+  EXPECT_LT(e.log_likelihood(38, 18, 24, 54), d.log_likelihood(38, 18, 24, 54) - 1.0);
 }
 
 TEST(TbdLikelihood, RejectsBadImagesAndParameters) {
@@ -207,4 +271,16 @@ TEST(TbdLikelihood, RejectsBadImagesAndParameters) {
   TbdLikelihoodParams p;
   p.closing_size = 4;
   EXPECT_THROW(TbdLikelihood{p}, InvalidArgument);
+  p = {};
+  p.closing_ratio = -0.5;
+  EXPECT_THROW(TbdLikelihood{p}, InvalidArgument);
+  // The defaults refer to the person size: an image before set_person_size is an error.
+  TbdLikelihood unsized;
+  try {
+    unsized.set_image(cv::Mat(10, 10, CV_32F, cv::Scalar(0.5f)));
+    FAIL() << "no person size accepted";
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("set_person_size"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(unsized.set_person_size(0.0, 10.0), InvalidArgument);
 }

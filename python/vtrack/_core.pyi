@@ -85,13 +85,14 @@ class KdeBackground:
         n_samples: int = 10,
         period: int = 10,
         bandwidth: Tuple[float, float, float] = (0.03, 0.03, 0.06),
-        closing: int = 5,
+        closing: int = 3,
         threads: int = 0,
         update_threshold: float = 0.5,
         update_max_skips: int = 3,
         illumination_compensation: bool = False,
     ) -> None: ...
     def apply(self, frame: npt.NDArray[np.uint8]) -> npt.NDArray[np.float32]: ...
+    def set_closing(self, size: int) -> None: ...
     def freeze(self) -> None: ...
     def resume(self) -> None: ...
     def reset(self) -> None: ...
@@ -347,20 +348,21 @@ class MultiBernoulliTracker:
         *,
         delta_f: float = 0.1,
         delta_b: float = 0.002,
+        delta_b_reference: Literal["person", "image"] = 'image',
         closing_size: int = 0,
+        closing_ratio: float = 0.06,
         survival_probability: float = 0.99,
-        sigma_x: float = 5.0,
-        sigma_y: float = 5.0,
-        sigma_w: float = 1.5,
-        sigma_h: float = 2.0,
-        width_mean: float = 30.0,
-        width_std: float = 8.0,
-        height_mean: float = 85.0,
-        height_std: float = 20.0,
-        width_min: float = 12.0,
-        width_max: float = 64.0,
-        height_min: float = 40.0,
-        height_max: float = 150.0,
+        height_mean: float = 0.0,
+        width_mean: float = 0.0,
+        size_aspect: float = 0.35,
+        size_from_foreground: float = 0.94,
+        size_initial: float = 0.15,
+        size_half_life: float = 0.0,
+        size_std: float = 0.25,
+        size_min: float = 0.45,
+        size_max: float = 2.0,
+        sigma_xy: float = 0.06,
+        sigma_wh: float = 0.02,
         quarter_birth: bool = True,
         birth_probability: float = 0.02,
         birth_particles: int = 200,
@@ -369,7 +371,7 @@ class MultiBernoulliTracker:
         adaptive_birth: bool = True,
         adaptive_birth_probability: float = 0.05,
         adaptive_birth_log_likelihood: float = -3.0,
-        adaptive_birth_stride: int = 8,
+        adaptive_birth_stride: float = 0.1,
         adaptive_birth_max: int = 3,
         min_particles: int = 50,
         max_particles: int = 400,
@@ -395,6 +397,10 @@ class MultiBernoulliTracker:
     def components(self) -> List[BernoulliComponent]: ...
     @property
     def frame(self) -> int: ...
+    @property
+    def closing_pixels(self) -> int: ...
+    @property
+    def size_prior(self) -> Dict[str, Any]: ...
     @property
     def image_size(self) -> Tuple[int, int]: ...
     @property

@@ -16,15 +16,21 @@ namespace {
 class MbFrameTracker : public FrameTracker {
  public:
   MbFrameTracker(const PipelineParams& p, int width, int height)
-      : background_(p.background), tracker_(width, height, p.mb) {}
+      : background_(p.background), tracker_(width, height, p.mb),
+        follow_closing_(p.mb.likelihood.closing_size == 0 && p.mb.likelihood.closing_ratio > 0) {}
   const filters::Tracks& step(const cv::Mat& frame) override {
     background_.apply(frame, y_);
-    return tracker_.step(y_);
+    const filters::Tracks& tracks = tracker_.step(y_);
+    // The closing of y is relative to the people's size, which the tracker learns: the background
+    // model's closing (and so its selective update's mask) follows the tracker's.
+    if (follow_closing_) background_.set_closing(tracker_.likelihood().closing_pixels());
+    return tracks;
   }
 
  private:
   image::KdeBackground background_;
   filters::MultiBernoulliFilter tracker_;
+  bool follow_closing_;  // the tracker's closing is person-relative
   cv::Mat y_;
 };
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <string>
 
@@ -21,6 +22,11 @@ void require_probability(const char* name, double v) {
   require(v >= 0.0 && v <= 1.0, name, v, "in [0, 1]");
 }
 
+const MultiBernoulliParams& validated(const MultiBernoulliParams& p) {
+  validate(p);
+  return p;
+}
+
 // Components and tracks in label order (older first), which merging and explaining-away rely on.
 template <typename T>
 void sort_by_label(std::vector<T>& v) {
@@ -35,18 +41,17 @@ const core::ParameterTable<MultiBernoulliParams>& MultiBernoulliParams::table() 
       core::ParameterTable<P>()
           .include(&P::likelihood)
           .add("survival_probability", &P::survival_probability)
-          .add("sigma_x", &P::sigma_x)
-          .add("sigma_y", &P::sigma_y)
-          .add("sigma_w", &P::sigma_w)
-          .add("sigma_h", &P::sigma_h)
-          .add("width_mean", &P::width_mean)
-          .add("width_std", &P::width_std)
           .add("height_mean", &P::height_mean)
-          .add("height_std", &P::height_std)
-          .add("width_min", &P::width_min)
-          .add("width_max", &P::width_max)
-          .add("height_min", &P::height_min)
-          .add("height_max", &P::height_max)
+          .add("width_mean", &P::width_mean)
+          .add("size_aspect", &P::size_aspect)
+          .add("size_from_foreground", &P::size_from_foreground)
+          .add("size_initial", &P::size_initial)
+          .add("size_half_life", &P::size_half_life)
+          .add("size_std", &P::size_std)
+          .add("size_min", &P::size_min)
+          .add("size_max", &P::size_max)
+          .add("sigma_xy", &P::sigma_xy)
+          .add("sigma_wh", &P::sigma_wh)
           .add("quarter_birth", &P::quarter_birth)
           .add("birth_probability", &P::birth_probability)
           .add("birth_particles", &P::birth_particles)
@@ -78,20 +83,22 @@ void validate(const MultiBernoulliParams& p) {
   models::validate(p.likelihood);
   require(p.survival_probability > 0.0 && p.survival_probability <= 1.0, "survival_probability",
           p.survival_probability, "in (0, 1]");
-  require_positive("sigma_x", p.sigma_x);
-  require_positive("sigma_y", p.sigma_y);
-  require_positive("sigma_w", p.sigma_w);
-  require_positive("sigma_h", p.sigma_h);
-  require_positive("width_mean", p.width_mean);
-  require_positive("height_mean", p.height_mean);
-  require(std::isfinite(p.width_std) && p.width_std >= 0.0, "width_std", p.width_std, ">= 0");
-  require(std::isfinite(p.height_std) && p.height_std >= 0.0, "height_std", p.height_std, ">= 0");
-  require(p.width_min >= 1.0, "width_min", p.width_min, ">= 1");
-  require(p.height_min >= 1.0, "height_min", p.height_min, ">= 1");
-  require(p.width_max >= p.width_min && std::isfinite(p.width_max), "width_max", p.width_max,
-          ">= width_min and finite");
-  require(p.height_max >= p.height_min && std::isfinite(p.height_max), "height_max",
-          p.height_max, ">= height_min and finite");
+  require(std::isfinite(p.height_mean) && p.height_mean >= 0.0, "height_mean", p.height_mean,
+          ">= 0 (0: learnt)");
+  require(std::isfinite(p.width_mean) && p.width_mean >= 0.0, "width_mean", p.width_mean,
+          ">= 0 (0: size_aspect x height)");
+  require_positive("size_aspect", p.size_aspect);
+  require_positive("size_from_foreground", p.size_from_foreground);
+  require(p.size_initial > 0.0 && p.size_initial <= 1.0, "size_initial", p.size_initial,
+          "in (0, 1]");
+  require(std::isfinite(p.size_half_life) && p.size_half_life >= 0.0, "size_half_life",
+          p.size_half_life, ">= 0 (0: never forget)");
+  require(std::isfinite(p.size_std) && p.size_std >= 0.0, "size_std", p.size_std, ">= 0");
+  require(p.size_min > 0.0 && p.size_min <= 1.0, "size_min", p.size_min, "in (0, 1]");
+  require(std::isfinite(p.size_max) && p.size_max >= 1.0, "size_max", p.size_max,
+          ">= 1 and finite");
+  require(p.sigma_xy > 0.0 && p.sigma_xy <= 1.0, "sigma_xy", p.sigma_xy, "in (0, 1]");
+  require(p.sigma_wh > 0.0 && p.sigma_wh <= 1.0, "sigma_wh", p.sigma_wh, "in (0, 1]");
   require(p.birth_probability > 0.0 && p.birth_probability < 1.0, "birth_probability",
           p.birth_probability, "in (0, 1)");
   require(p.birth_particles >= 1, "birth_particles", p.birth_particles, ">= 1");
@@ -101,7 +108,8 @@ void validate(const MultiBernoulliParams& p) {
   require(std::isfinite(p.adaptive_birth_log_likelihood), "adaptive_birth_log_likelihood",
           p.adaptive_birth_log_likelihood, "finite");
   require(p.established_age >= 0, "established_age", p.established_age, ">= 0");
-  require(p.adaptive_birth_stride >= 1, "adaptive_birth_stride", p.adaptive_birth_stride, ">= 1");
+  require(p.adaptive_birth_stride > 0.0 && p.adaptive_birth_stride <= 1.0, "adaptive_birth_stride",
+          p.adaptive_birth_stride, "in (0, 1]");
   require(p.adaptive_birth_max >= 0, "adaptive_birth_max", p.adaptive_birth_max, ">= 0");
   require(p.min_particles >= 1, "min_particles", p.min_particles, ">= 1");
   if (p.min_particles > p.max_particles) {
@@ -144,14 +152,56 @@ double updated_existence(double r, double log_rho) {
   return 1.0 / (1.0 + std::exp(-log_odds));
 }
 
+PersonSizePrior person_size_prior(const MultiBernoulliParams& p, double width, double height) {
+  PersonSizePrior s;
+  s.height = height;
+  s.width = width > 0.0 ? width : p.size_aspect * height;
+  s.width_std = p.size_std * s.width;
+  s.height_std = p.size_std * s.height;
+  // Sizes of at least one pixel, whatever the scale.
+  s.width_min = std::max(1.0, p.size_min * s.width);
+  s.height_min = std::max(1.0, p.size_min * s.height);
+  s.width_max = std::max(s.width_min, p.size_max * s.width);
+  s.height_max = std::max(s.height_min, p.size_max * s.height);
+  s.sigma_xy = p.sigma_xy * s.height;
+  s.sigma_wh = p.sigma_wh * s.height;
+  s.birth_stride = std::max(1, static_cast<int>(std::lround(p.adaptive_birth_stride * s.height)));
+  return s;
+}
+
 MultiBernoulliFilter::MultiBernoulliFilter(int width, int height,
                                            const MultiBernoulliParams& params)
-    : params_((validate(params), params)), width_(width), height_(height), rng_(params.seed),
-      motion_(models::RandomWalkParams{
-          {params.sigma_x, params.sigma_y, params.sigma_w, params.sigma_h}, 4}),
-      likelihood_(params.likelihood), management_(params.management) {
+    : params_(validated(params)), width_(width), height_(height), rng_(params.seed),
+      likelihood_(params.likelihood),
+      size_estimator_(params.size_half_life > 0.0 ? params.size_half_life
+                                                  : std::numeric_limits<double>::infinity()),
+      management_(params.management) {
   if (width < 1) throw InvalidArgument("width must be >= 1, got " + std::to_string(width));
   if (height < 1) throw InvalidArgument("height must be >= 1, got " + std::to_string(height));
+  const double h = params_.height_mean > 0.0 ? params_.height_mean : params_.size_initial * height;
+  set_size_prior(person_size_prior(params_, params_.width_mean, h));
+}
+
+void MultiBernoulliFilter::set_size_prior(const PersonSizePrior& size) {
+  size_ = size;
+  likelihood_.set_person_size(size_.width, size_.height);
+  // Eq. (22)'s random walk, in pixels of the current prior.
+  motion_ = models::RandomWalk(models::RandomWalkParams{
+      {size_.sigma_xy, size_.sigma_xy, size_.sigma_wh, size_.sigma_wh}, 4});
+}
+
+void MultiBernoulliFilter::update_size_prior() {
+  if (params_.height_mean > 0.0) return;  // given in pixels
+  // The closed y the likelihood sees: the components are those the filter's boxes explain.
+  size_estimator_.observe(likelihood_.processed_image());
+  // Evidence: components adding up to one person of the current prior (the first frames of a
+  // video with people in view; a scene without motion keeps the initial guess).
+  if (!size_.learnt && size_estimator_.weight() < size_.width * size_.height) return;
+  const double h = params_.size_from_foreground * size_estimator_.median_height();
+  if (!(h > 0.0)) return;
+  PersonSizePrior size = person_size_prior(params_, params_.width_mean, h);
+  size.learnt = true;
+  set_size_prior(size);
 }
 
 const Tracks& MultiBernoulliFilter::step(const cv::Mat& y) {
@@ -180,6 +230,8 @@ const Tracks& MultiBernoulliFilter::step(const cv::Mat& y) {
   prune_and_merge();
   resample();
   manage_tracks();
+  // The size prior learnt from this frame's foreground applies from the next frame on.
+  update_size_prior();
   ++frame_;
   return tracks_;
 }
@@ -231,12 +283,13 @@ void MultiBernoulliFilter::manage_tracks() {
 }
 
 void MultiBernoulliFilter::clamp_sizes(BoxParticles::States& s) const {
-  s.col(2) = s.col(2).cwiseMax(float(params_.width_min)).cwiseMin(float(params_.width_max));
-  s.col(3) = s.col(3).cwiseMax(float(params_.height_min)).cwiseMin(float(params_.height_max));
+  s.col(2) = s.col(2).cwiseMax(float(size_.width_min)).cwiseMin(float(size_.width_max));
+  s.col(3) = s.col(3).cwiseMax(float(size_.height_min)).cwiseMin(float(size_.height_max));
 }
 
 void MultiBernoulliFilter::predict() {
-  // Eq. (22): r <- P_S r; x <- x + e with e ~ N(0, diag(sigma^2)) (motion_); weights unchanged.
+  // Eq. (22): r <- P_S r; x <- x + e with e ~ N(0, diag(sigma^2)) (motion_, sigmas relative to
+  // the size prior); weights unchanged.
   for (auto& c : components_) {
     c.existence *= params_.survival_probability;
     const Eigen::Index n = c.particles.size();
@@ -269,10 +322,10 @@ void MultiBernoulliFilter::add_birth(double existence, double cx_lo, double cx_h
   rng_.fill_normal(z.data(), z.size());
   for (int j = 0; j < n; ++j) {
     // Normal size, truncated (by clamping) to the allowed range.
-    const double w = std::clamp(size[0] + size_std[0] * z[2 * j], params_.width_min,
-                                params_.width_max);
-    const double h = std::clamp(size[1] + size_std[1] * z[2 * j + 1], params_.height_min,
-                                params_.height_max);
+    const double w = std::clamp(size[0] + size_std[0] * z[2 * j], size_.width_min,
+                                size_.width_max);
+    const double h = std::clamp(size[1] + size_std[1] * z[2 * j + 1], size_.height_min,
+                                size_.height_max);
     const double cx = cx_lo + (cx_hi - cx_lo) * u[2 * j];
     const double cy = cy_lo + (cy_hi - cy_lo) * u[2 * j + 1];
     x.row(j) << float(cx - 0.5 * w), float(cy - 0.5 * h), float(w), float(h);
@@ -288,8 +341,8 @@ void MultiBernoulliFilter::add_quarter_births() {
   // person does.
   const double hw = 0.5 * width_;
   const double hh = 0.5 * height_;
-  const Eigen::Vector2d size(params_.width_mean, params_.height_mean);
-  const Eigen::Vector2d size_std(params_.width_std, params_.height_std);
+  const Eigen::Vector2d size(size_.width, size_.height);
+  const Eigen::Vector2d size_std(size_.width_std, size_.height_std);
   for (int q = 0; q < 4; ++q) {
     const double x0 = (q % 2) * hw;
     const double y0 = (q / 2) * hh;
@@ -307,10 +360,10 @@ void MultiBernoulliFilter::add_adaptive_births() {
     Eigen::Vector4f box;
   };
   std::vector<Candidate> candidates;
-  const int stride = params_.adaptive_birth_stride;
+  const int stride = size_.birth_stride;
   for (const double scale : {0.85, 1.0, 1.3}) {
-    const int ww = std::max(1, int(std::lround(scale * params_.width_mean)));
-    const int wh = std::max(1, int(std::lround(scale * params_.height_mean)));
+    const int ww = std::max(1, int(std::lround(scale * size_.width)));
+    const int wh = std::max(1, int(std::lround(scale * size_.height)));
     for (int y = -wh / 2; y <= height_ - wh / 2; y += stride) {
       for (int x = -ww / 2; x <= width_ - ww / 2; x += stride) {
         if (2 * likelihood_.integral().area({x, y, ww, wh}) < static_cast<long long>(ww) * wh) {

@@ -106,6 +106,13 @@ KdeBackground::KdeBackground(const KdeBackgroundParams& params) : params_(params
   validate(params_);
 }
 
+void KdeBackground::set_closing(int size) {
+  KdeBackgroundParams p = params_;
+  p.closing = size;
+  validate(p);
+  params_.closing = size;
+}
+
 void KdeBackground::reset() {
   learning_ = true;
   frame_index_ = 0;

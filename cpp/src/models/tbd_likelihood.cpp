@@ -16,7 +16,11 @@ const core::ParameterTable<TbdLikelihoodParams>& TbdLikelihoodParams::table() {
   static const auto table = core::ParameterTable<P>()
                                 .add("delta_f", &P::delta_f)
                                 .add("delta_b", &P::delta_b)
-                                .add("closing_size", &P::closing_size);
+                                .add_choice("delta_b_reference", &P::delta_b_reference,
+                                            {{"person", P::DeltaBReference::person},
+                                             {"image", P::DeltaBReference::image}})
+                                .add("closing_size", &P::closing_size)
+                                .add("closing_ratio", &P::closing_ratio);
   return table;
 }
 
@@ -31,6 +35,23 @@ void validate(const TbdLikelihoodParams& p) {
     throw InvalidArgument("closing_size must be 0, 1 or an odd number, got " +
                           std::to_string(p.closing_size));
   }
+  require(std::isfinite(p.closing_ratio) && p.closing_ratio >= 0.0 && p.closing_ratio <= 1.0,
+          "closing_ratio", p.closing_ratio, "in [0, 1]");
+}
+
+void TbdLikelihood::set_person_size(double width, double height) {
+  require(std::isfinite(width) && width > 0.0, "person width", width, "a positive finite number");
+  require(std::isfinite(height) && height > 0.0, "person height", height,
+          "a positive finite number");
+  person_width_ = width;
+  person_height_ = height;
+}
+
+int TbdLikelihood::closing_pixels() const {
+  if (params_.closing_size != 0) return params_.closing_size;
+  // The odd number within 1 px of closing_ratio x height (2k + 1 for [2k, 2k + 2)); 1 = none.
+  const double side = std::min(params_.closing_ratio * person_height_, 1e6);
+  return 2 * static_cast<int>(std::floor(0.5 * side)) + 1;
 }
 
 TbdLikelihood::TbdLikelihood(const TbdLikelihoodParams& params) : params_(params) {
@@ -80,9 +101,17 @@ void TbdLikelihood::set_image(const cv::Mat& y) {
   // The background model's separable closing (image/morphology.hpp): equal to cv::morphologyEx
   // (a max/min over a replicated border equals one over the pixels inside), single-threaded
   // because the tracker runs one per camera.
-  image::close_square(y, closed_, params_.closing_size, 1, &closing_workspace_);
+  const bool person = params_.delta_b_reference == TbdLikelihoodParams::DeltaBReference::person;
+  if ((person || (params_.closing_size == 0 && params_.closing_ratio > 0.0)) &&
+      !has_person_size()) {
+    throw InvalidArgument("the likelihood's delta_b_reference 'person' and closing_ratio need the "
+                          "person size (set_person_size) before the first image");
+  }
+  image::close_square(y, closed_, closing_pixels(), 1, &closing_workspace_);
   integral_.compute(closed_);
-  inv_m_delta_b_ = 1.0 / (static_cast<double>(y.total()) * params_.delta_b);
+  // Eq. (20)'s m delta_B, or a delta_B with a the person prior's area (see delta_b).
+  const double area = person ? person_width_ * person_height_ : static_cast<double>(y.total());
+  inv_m_delta_b_ = 1.0 / (area * params_.delta_b);
 }
 
 double TbdLikelihood::explained_sum(const image::Rect& rect,

@@ -12,6 +12,8 @@
 // Methods and the config sections they read (parameters by the components' tables):
 //   mb    KDE background model (mb-tbd paper Section 3.1)   background: KdeBackgroundParams
 //         -> multi-Bernoulli TBD filter (Sections 3.2-4)     tracker:    MultiBernoulliParams
+//         (after each frame the background model's closing is set to the tracker's, which is
+//         relative to the people's learnt height, unless the tracker's closing_size is in pixels)
 //   glmb  a people detector (detector "hog", required)      detector:   HogParams
 //         -> delta-GLMB box tracker (BoxTracker)             tracker:    BoxTrackerParams
 #include <cstdint>

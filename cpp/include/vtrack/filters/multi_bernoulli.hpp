@@ -34,6 +34,7 @@
 #include "vtrack/filters/track_management.hpp"
 #include "vtrack/filters/tracks.hpp"
 #include "vtrack/models/motion.hpp"
+#include "vtrack/models/person_size.hpp"
 #include "vtrack/models/tbd_likelihood.hpp"
 #include "vtrack/smc/particle_set.hpp"
 
@@ -46,28 +47,58 @@ struct MultiBernoulliParams {
 
   // P_S of eq. (22), in (0, 1].
   double survival_probability = 0.99;
-  // Standard deviations of the random walk x(k+1) = x(k) + e(k) (Section 4), pixels per frame.
-  // PETS09-S2L1 runs at 7 frames/s, so its walkers move 3-6 px/frame at 768 x 576; a random walk
-  // follows a drift of about its own sigma, hence 5.
-  double sigma_x = 5.0;
-  double sigma_y = 5.0;
-  double sigma_w = 1.5;
-  double sigma_h = 2.0;
-
-  // People size prior, used by both birth models and as the range widths and heights are clamped
-  // to after prediction (so a box cannot grow to swallow a group). Defaults suit PETS09-S2L1 at
-  // 768 x 576, whose people are 16-73 px wide and 53-153 px tall (MOT15 ground truth; mean 30 x
-  // 85, std 7.5 x 19). The maxima (64, 150) keep a box from spanning two people walking side by
-  // side; measured on the KDE output of PETS09-S2L1 the fitted prior (with the other defaults
-  // here) raised the first 300 frames' calibrated MOTA from 0.25 (40 x 100) to 0.35.
-  double width_mean = 30.0;
-  double width_std = 8.0;
-  double height_mean = 85.0;
-  double height_std = 20.0;
-  double width_min = 12.0;
-  double width_max = 64.0;
-  double height_min = 40.0;
-  double height_max = 150.0;
+  // ---- Scale. Every size below is relative to the people size prior's mean height h (pixels),
+  // so that the defaults hold at any resolution, crop and camera distance (issue 12); they were
+  // pixel sizes fitted to PETS09-S2L1 at 768 x 576 before, where h = 85 px, and are those
+  // values divided by 85 (or by the width 30).
+  //
+  // The prior's mean size. height_mean: pixels, or 0 (default) to learn it from the scene's own
+  // foreground (models/person_size.hpp): h = size_from_foreground x the area-weighted median
+  // height of the foreground's connected components (y < 0.5 after the likelihood's closing),
+  // observed every frame and kept for the whole video (size_half_life 0, the default) or forgotten
+  // with a half-life of size_half_life frames (a camera that zooms); until the
+  // components seen add up to the area of one person of the current prior, h = size_initial x
+  // the image height. width_mean: pixels, or 0 (default) for size_aspect x h.
+  // Why learnt (benchmarks/pets09.py, MB with its defaults, MOTA / IDF1 all frames, seed 0): with
+  // the former fixed 30 x 85 px prior, PETS09-S2L1 resized 0.5x gave -0.095 / 0.069 and 1.5x
+  // -1.404 / 0.078; the 512 x 384 crop 0.315 / 0.372 and the 1.5x zoom -0.357 / 0.258. A prior
+  // scaled with the image (h = 0.148 x image height) is right for a resize but wrong for a crop
+  // or a closer camera (the crop's people are the same pixels in a smaller image), which the
+  // learnt one gets right: see the table in benchmarks/pets09.py.
+  double height_mean = 0.0;
+  double width_mean = 0.0;
+  // Mean width / mean height of the prior when width_mean is 0: PETS09-S2L1's MOT15 GT people are
+  // 30 x 85 px on average (0.35). The width is not learnt: people walking side by side merge into
+  // one wide foreground component far more often than into a tall one.
+  double size_aspect = 0.35;
+  // h = size_from_foreground x the area-weighted median foreground component height: 85 / 90 px
+  // on PETS09-S2L1's first 50 frames at 768 x 576 (KDE y), so that the learnt prior there is the
+  // former fixed one. (The median over all its frames is 93 px.)
+  double size_from_foreground = 0.94;
+  double size_initial = 0.15;      // h / image height before the foreground says (85 / 576)
+  // Frames, >= 0; 0 = never forget. Measured (benchmarks/pets09.py, MB MOTA / IDF1, seed 0; all
+  // frames / 398-795): at 768 x 576 a half-life of 100 frames gave 0.374 / 0.433 and 0.228 / 0.331,
+  // never forgetting 0.496 / 0.454 and 0.427 / 0.417 (a fixed 85 px prior 0.534 / 0.469 and
+  // 0.492 / 0.439): in the second half people walk in groups, the recent components grow taller
+  // and wider than one person, and a forgetting prior follows them. At 384 x 288 (0.5x) 100
+  // frames gave 0.447 / 0.425, never forgetting 0.410 / 0.457.
+  double size_half_life = 0.0;
+  // Standard deviation of the widths and heights of births, as a fraction of the mean (PETS09's
+  // GT: 7.5 / 30 and 19 / 85), and the range widths and heights are clamped to after each
+  // prediction (so a box cannot grow to swallow a group), as fractions of the mean: [0.45, 2].
+  // (Formerly 8 / 20 px, and 12-64 x 40-150 px around 30 x 85: fractions 0.4-2.1 x 0.47-1.76.
+  // The maximum keeps a box from spanning two people walking side by side; measured on
+  // the KDE output of PETS09-S2L1, the fitted prior raised the first 300 frames' calibrated MOTA
+  // from 0.25 (40 x 100 px) to 0.35.)
+  double size_std = 0.25;
+  double size_min = 0.45;
+  double size_max = 2.0;
+  // Standard deviations of the random walk x(k+1) = x(k) + e(k) (Section 4) per frame, as
+  // fractions of h: positions (x, y) and sizes (w, h). PETS09-S2L1 runs at 7 frames/s, so its
+  // walkers move 3-6 px/frame at 768 x 576 (h = 85); a random walk follows a drift of about its
+  // own sigma, hence 5 px = 0.06 h; sizes 1.5-2 px = 0.02 h.
+  double sigma_xy = 0.06;
+  double sigma_wh = 0.02;
 
   // The paper's birth (Section 4): one Bernoulli per image quarter with r_Gamma = 0.02.
   bool quarter_birth = true;
@@ -86,7 +117,7 @@ struct MultiBernoulliParams {
   int established_age = 3;
 
   // Data-driven birth: person-sized windows (the prior's mean size times 0.85, 1 and 1.3, on a
-  // grid of `adaptive_birth_stride` pixels) are scored by log g_y of eq. (20) with the existing
+  // grid of adaptive_birth_stride x h pixels, at least 1) are scored by log g_y of eq. (20) with the existing
   // targets' boxes counted as background, i.e. by how well a new target there would explain
   // foreground no target explains. The best windows scoring above adaptive_birth_log_likelihood
   // (0: the box alone would raise an existence probability, eq. 23), at most adaptive_birth_max
@@ -101,7 +132,7 @@ struct MultiBernoulliParams {
   // person is clearly foreground; the birth then has to prove itself in the update (eq. 23).
   // PETS09-S2L1 second half, calibrated: MOTA 0.32 with -3 vs 0.29 with 0 (IDF1 0.27 vs 0.29).
   double adaptive_birth_log_likelihood = -3.0;
-  int adaptive_birth_stride = 8;
+  double adaptive_birth_stride = 0.1;  // fraction of h (formerly 8 px at h = 85)
   int adaptive_birth_max = 3;
 
   // Particle counts of a component after resampling: clamp(ceil(r L_max), L_min, L_max).
@@ -189,6 +220,20 @@ struct BernoulliComponent {
   Eigen::Vector4f mean() const;
 };
 
+// The people size prior in pixels at one step: MultiBernoulliParams' relative sizes times the
+// given or learnt mean height.
+struct PersonSizePrior {
+  double width = 0.0, height = 0.0;          // means
+  double width_std = 0.0, height_std = 0.0;  // of births
+  double width_min = 0.0, width_max = 0.0;   // clamp range after prediction
+  double height_min = 0.0, height_max = 0.0;
+  double sigma_xy = 0.0, sigma_wh = 0.0;     // random walk, px per frame
+  int birth_stride = 1;                      // adaptive birth grid, px
+  bool learnt = false;                       // from the scene's foreground (else given/initial)
+};
+// The pixel sizes for mean height `height` and mean width `width` (0: size_aspect x height).
+PersonSizePrior person_size_prior(const MultiBernoulliParams& params, double width, double height);
+
 class MultiBernoulliFilter {
  public:
   MultiBernoulliFilter(int width, int height, const MultiBernoulliParams& params = {});
@@ -202,6 +247,9 @@ class MultiBernoulliFilter {
   const std::vector<BernoulliComponent>& components() const { return components_; }
   const MultiBernoulliParams& params() const { return params_; }
   const models::TbdLikelihood& likelihood() const { return likelihood_; }
+  // The people size prior in force (pixels): fixed by height_mean / width_mean, else learnt from
+  // the foreground seen so far (see MultiBernoulliParams::height_mean).
+  const PersonSizePrior& size_prior() const { return size_; }
   int width() const { return width_; }
   int height() const { return height_; }
   int frame() const { return frame_; }  // number of steps taken
@@ -218,6 +266,11 @@ class MultiBernoulliFilter {
   void prune_and_merge();
   void resample();
   void clamp_sizes(BoxParticles::States& states) const;
+  // Observes y's foreground and updates size_ (and the likelihood's person size and the random
+  // walk's sigmas) when learning.
+  void update_size_prior();
+  // Sets size_ and what depends on it: the likelihood's person size and motion_'s sigmas.
+  void set_size_prior(const PersonSizePrior& size);
   // Confirmation, relabelling from the lost memory and velocities; fills tracks_.
   void manage_tracks();
 
@@ -225,9 +278,12 @@ class MultiBernoulliFilter {
   int width_;
   int height_;
   core::Rng rng_;
-  // Eq. (22)'s random walk x + e, e ~ N(0, diag(sigma_x^2, sigma_y^2, sigma_w^2, sigma_h^2)).
+  // Eq. (22)'s random walk x + e, e ~ N(0, diag(sx^2, sx^2, sw^2, sw^2)), sx = sigma_xy h and sw =
+  // sigma_wh h for the size prior's mean height h (set_size_prior).
   models::RandomWalk motion_;
   models::TbdLikelihood likelihood_;
+  models::ForegroundSizeEstimator size_estimator_;
+  PersonSizePrior size_;
   TrackManager management_;
   std::vector<BernoulliComponent> components_;
   Tracks tracks_;

@@ -77,14 +77,19 @@ struct KdeBackgroundParams {
   // while halving the false foreground of the narrower kernels. Any value > 0 is accepted.
   std::array<double, 3> bandwidth = {0.03, 0.03, 0.06};
   // Side of the square structuring element of the closing of y (section 3.2); 0 or 1 = off,
-  // otherwise an odd number of pixels. 5 (was 3) also joins the fragments of a silhouette (XVID
-  // blocks, clothes close to the background colour), and the selective update's mask is taken
-  // from the closed y. The multi-Bernoulli tracker used to close y a second time (5 x 5); it now
-  // takes this one (its closing_size default is 0): PETS09-S2L1 frames 1-397, calibrated MOTA /
-  // IDF1 over tracker seeds 0-2, 0.565 / 0.565 with closing 3 here and 5 in the tracker, 0.579 /
-  // 0.601 with 5 here only (the second closing is then a no-op: a 5 x 5-closed image is closed
-  // under 3 x 3 and 5 x 5), and ~1 ms per frame less.
-  int closing = 5;
+  // otherwise an odd number of pixels. 3 removes pixel-level specks (sensor noise, XVID blocks);
+  // the selective update's mask is taken from the closed y. Joining the fragments of a silhouette
+  // (clothes close to the background colour) needs a closing the size of the people, which
+  // the background model cannot know: the multi-Bernoulli tracker applies it (its closing_ratio,
+  // 0.06 of the learnt person height), and in the mb pipeline (apps/pipeline.hpp) this closing
+  // follows the tracker's after every frame (set_closing), so that the selective update's mask
+  // is closed like the tracker's y; this value is then the first frame's. Default 5 until issue 12, which fitted PETS09-S2L1 at
+  // 768 x 576 only: resized 0.5x, 5 x 5 here joins neighbouring people (MB MOTA / IDF1 on all
+  // frames, seeds 0-2: 0.456 / 0.397 with 5, 0.478 / 0.481 with 3). (At 768 x 576, one closing of
+  // 5 here against 3 here and 5 in the tracker: frames 1-397, calibrated MOTA / IDF1 over seeds
+  // 0-2, 0.579 / 0.601 against 0.565 / 0.565; frames 398-795, 0.477 / 0.415 against
+  // 0.485 / 0.425.)
+  int closing = 3;
   // Threads: 0 = OpenCV's default pool (cv::parallel_for_ over rows), 1 = the calling thread
   // only, T > 1 = rows split into T stripes on OpenCV's pool. Results are identical for every value.
   int threads = 0;
@@ -138,6 +143,10 @@ class KdeBackground {
   // 8-bit 3-channel, or a frame whose size differs from the first frame since construction or
   // reset() (the model is left unchanged in that case).
   void apply(const cv::Mat& bgr, cv::Mat& y);
+
+  // Changes the closing's side (0, 1 or odd; InvalidArgument otherwise) from the next frame on:
+  // the mb pipeline sets it to the tracker's person-relative closing (see `closing`).
+  void set_closing(int size);
 
   void freeze() { learning_ = false; }
   void resume() { learning_ = true; }

@@ -49,27 +49,41 @@ struct TbdLikelihoodParams {
   // large, because missing foreground costs more than including background.)
   double delta_f = 0.1;
   // delta_B of g_B(ybar_B) = zeta_B exp(ybar_B / delta_B) (eqs. 15-18): the reward for covering
-  // foreground, 1 / (m delta_B) per unit of 1 - y covered, m the image's pixel count. It depends
-  // on the target's share of the image, m_x / m, not on the resolution: with 1e-3 a 40 x 100 px
+  // foreground. As printed (delta_b_reference "image", the default), 1 / (m delta_B) per unit of
+  // 1 - y covered, m the image's pixel count: it depends on the target's share of the image,
+  // m_x / m, not on the resolution, so it holds when a video is resized. With 1e-3 a 40 x 100 px
   // person in a 768 x 576 image (0.9% of it) collects 0.009 (1 - ybar) / 1e-3, i.e. +7 nats at
-  // ybar = 0.2 and +5 at ybar = 0.45 (a loose silhouette), against log g_F = 0.3 and -2.2:
-  // log g_y > 0 and a birth is confirmed in a frame or two; on background (ybar ~ 0.95) log g_y
-  // ~ -7, so a departed track dies within two frames.
-  // Default 2e-3, tuned on vtrack's KDE output of PETS09-S2L1 (benchmarks/pets09.py, the sweep in
-  // its docstring): the KDE's y holds grey "ghosts" (y ~ 0.6-0.8) where people stood in the
-  // background samples, and with 1e-3 their reward drew boxes over them and over pairs of people
-  // (all other defaults as here, calibrated second half: MOTA 0.18 with 1.5e-3, 0.32 with 2e-3,
-  // 0.31 with 2.5e-3, which loses the smallest, farthest people; the old defaults gave -0.42).
-  // On the synthetic end-to-end scene of tests/ these defaults cost ~0.03 MOTA (0.93 -> 0.90).
+  // ybar = 0.2. Default 2e-3, tuned on vtrack's KDE output of PETS09-S2L1 (benchmarks/pets09.py,
+  // the sweep in its docstring): the KDE's y holds grey "ghosts" (y ~ 0.6-0.8) where people
+  // stood in the background samples, and with 1e-3 their reward drew boxes over them and over
+  // pairs of people (calibrated second half: MOTA 0.18 with 1.5e-3, 0.32 with 2e-3, 0.31 with
+  // 2.5e-3, which loses the smallest, farthest people).
+  // With delta_b_reference "person", m is replaced by the area a of the people size prior (the
+  // tracker's mean width x height, set_person_size): a person-sized box of mean y ybar earns
+  // (1 - ybar) / delta_B nats whatever their share of the image (a crop, a closer camera); 0.35
+  // is the equivalent of 2e-3 "image" for PETS09-S2L1 at 768 x 576 with a 30 x 85 px prior
+  // (2e-3 x 442368 / 2550). Measured (issue 12; size prior learnt with a 100-frame half-life, MB
+  // MOTA / IDF1 on all
+  // frames, seed 0): on PETS09's central 512 x 384 crop "image" 2e-3 gave 0.270 / 0.363 and
+  // "person" 0.35 0.428 / 0.408; on the 1.5x zoom 0.252 / 0.393 against 0.438 / 0.379; but on the
+  // 320 x 240 synthetic scene of tests/test_track_video.py (people 1.2% of the image, twice
+  // PETS09's share, and cleaner y) "person" 0.35 gave 0.618 / 0.803 against 0.938 / 0.968 with
+  // "image" 2e-3: a person-relative reward needs another value there, so it is not the default.
   double delta_b = 2e-3;
-  // Side of the square structuring element of the morphological closing of y (Section 3.2);
-  // 0 or 1 disables it. Must be 0 or odd. Default 0 because vtrack's KDE background already
-  // closes y with a 5 x 5 square (KdeBackgroundParams::closing), and a second closing of that
-  // image changes nothing; set 5 when y comes from elsewhere unclosed. (Measured with the KDE's
-  // former 3 x 3 closing, on PETS09-S2L1's KDE output a 5 x 5 closing here joined the fragments
-  // of a silhouette: first 300 frames, delta_b 1.5e-3, calibrated MOTA 0.22 with 5 vs 0.11 with
-  // 3; 7 was worse, second half, delta_b 2e-3: 0.24 vs 0.32 with 5.)
+  enum class DeltaBReference { image, person };
+  DeltaBReference delta_b_reference = DeltaBReference::image;
+  // Side of the square structuring element of the morphological closing of y (Section 3.2), which
+  // removes foreground specks and joins the fragments of a silhouette. closing_size > 1 (odd):
+  // that many pixels; 1: off; 0 (default): closing_ratio times the person height (set_person_size),
+  // rounded to the odd number 2k + 1 for a product in [2k, 2k + 2) (so off below 2 px). The fragments to join scale with the people,
+  // so a fixed pixel size fits one resolution: vtrack's KDE closes y with 3 x 3 (pixel noise) and
+  // this closing adds the person-sized part. 0.06 is 5 px for PETS09-S2L1's 85 px people at
+  // 768 x 576, the closing its defaults were tuned with. Measured (benchmarks/pets09.py, MB MOTA /
+  // IDF1, all frames, seeds 0-2, learnt prior): at 0.5x (384 x 288) a 5 x 5 closing gave 0.456 /
+  // 0.397 and 3 x 3 0.478 / 0.481; at 1.5x, 5 x 5 0.538 / 0.501, 7 x 7 0.519 / 0.493 (seeds 0-1).
+  // (Earlier, at 768 x 576: 7 x 7 was worse than 5 x 5, second half MOTA 0.24 vs 0.32.)
   int closing_size = 0;
+  double closing_ratio = 0.06;
 
   static const core::ParameterTable<TbdLikelihoodParams>& table();
 };
@@ -85,8 +99,16 @@ class TbdLikelihood {
   // log zeta_F (see above).
   double log_zeta_f() const { return log_zeta_f_; }
 
+  // The people size prior's mean width and height (px, > 0) that the "person" delta_B reference
+  // and the closing_ratio refer to; the tracker sets it whenever its prior changes.
+  void set_person_size(double width, double height);
+  bool has_person_size() const { return person_height_ > 0.0; }
+  // The closing's side in pixels in force (0 or 1: none).
+  int closing_pixels() const;
+
   // Takes a new image: H x W single-channel float32 with values in [0, 1] (NaN or values outside
   // are an InvalidArgument naming `y`). Applies the closing and computes the integral image.
+  // InvalidArgument when the parameters refer to the person size and none was set.
   void set_image(const cv::Mat& y);
   bool has_image() const { return !closed_.empty(); }
   int width() const { return closed_.cols; }
@@ -110,7 +132,9 @@ class TbdLikelihood {
  private:
   TbdLikelihoodParams params_;
   double log_zeta_f_;
-  double inv_m_delta_b_ = 0.0;  // 1 / (m delta_B), set with the image
+  double inv_m_delta_b_ = 0.0;  // 1 / (m delta_B) or 1 / (a delta_B), set with the image
+  double person_width_ = 0.0;
+  double person_height_ = 0.0;
   cv::Mat closed_;
   cv::Mat closing_workspace_;  // the intermediate dilation, reused across frames
   image::IntegralImage integral_;
