@@ -4,6 +4,7 @@
 #include <string>
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 
 #include "vtrack/core/errors.hpp"
 
@@ -13,6 +14,30 @@ namespace {
 constexpr double kLog2Pi = 1.8378770664093454835606594728112;
 
 }  // namespace
+
+void require_covariance(const Eigen::Ref<const Eigen::MatrixXd>& cov, const std::string& name,
+                        bool definite, Eigen::Index dim) {
+  const std::string size = std::to_string(cov.rows()) + "x" + std::to_string(cov.cols());
+  if (cov.rows() != cov.cols() || (dim >= 0 && cov.rows() != dim)) {
+    const std::string want = dim >= 0 ? std::to_string(dim) + "x" + std::to_string(dim) : "square";
+    throw InvalidArgument(name + " must be " + want + ", got " + size);
+  }
+  if (cov.size() == 0) return;
+  if (!cov.allFinite()) throw InvalidArgument(name + " contains NaN or inf");
+  const double scale = cov.cwiseAbs().maxCoeff();
+  if ((cov - cov.transpose()).cwiseAbs().maxCoeff() > 1e-9 * scale) {
+    throw InvalidArgument(name + " is not symmetric");
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(cov, Eigen::EigenvaluesOnly);
+  const double lowest = eig.eigenvalues().minCoeff();
+  if (definite && !(lowest > 0.0)) {
+    throw InvalidArgument(name + " must be positive definite, has eigenvalue " + value_text(lowest));
+  }
+  if (!definite && lowest < -1e-9 * scale) {
+    throw InvalidArgument(name + " must be positive semi-definite, has eigenvalue " +
+                          value_text(lowest));
+  }
+}
 
 Gaussian::Gaussian(Eigen::VectorXd mean, const Eigen::MatrixXd& covariance)
     : mean_(std::move(mean)) {

@@ -1,0 +1,20 @@
+#pragma once
+// Small text files a user names (config files, camera files, vehicle model files), read whole
+// with the checks such a file needs before a parser sees it.
+#include <cstddef>
+#include <string>
+
+namespace vtrack::core {
+
+// Reads `path` whole. IoError, naming `what` (e.g. "config file") and the path, when it is
+// missing, not a regular file (a folder, /dev/zero, a FIFO: reading one would never end or mean
+// nothing), larger than `max_bytes`, unreadable, or (max_flow_nesting >= 0) when its YAML/JSON
+// flow collections, [ ] and { } outside quotes, nest deeper than max_flow_nesting: recursive
+// parsers would otherwise exhaust the stack on a hostile file.
+std::string read_text_file(const std::string& path, const std::string& what,
+                           std::size_t max_bytes, int max_flow_nesting = -1);
+
+// The deepest nesting of [ ] and { } outside quoted strings.
+int flow_nesting(const std::string& text);
+
+}  // namespace vtrack::core
