@@ -4,6 +4,7 @@
 #include <string>
 
 #include "vtrack/core/errors.hpp"
+#include "vtrack/core/gaussian.hpp"
 
 namespace vtrack::models {
 namespace {
@@ -44,6 +45,23 @@ LinearGaussianObservation LinearGaussianObservation::position_of_constant_veloci
   LinearGaussianObservation o{Eigen::MatrixXd::Zero(axes, 2 * axes), R};
   for (int a = 0; a < axes; ++a) o.H(a, 2 * a) = 1.0;
   return o;
+}
+
+void validate(const LinearGaussianMotion& motion) {
+  if (motion.F.rows() != motion.F.cols() || motion.F.rows() == 0) {
+    throw InvalidArgument("motion F must be square and non-empty, got " +
+                          std::to_string(motion.F.rows()) + "x" + std::to_string(motion.F.cols()));
+  }
+  if (!motion.F.allFinite()) throw InvalidArgument("motion F contains NaN or inf");
+  core::require_covariance(motion.Q, "motion Q", false, motion.F.rows());
+}
+
+void validate(const LinearGaussianObservation& observation) {
+  if (observation.H.rows() == 0 || observation.H.cols() == 0) {
+    throw InvalidArgument("observation H must not be empty");
+  }
+  if (!observation.H.allFinite()) throw InvalidArgument("observation H contains NaN or inf");
+  core::require_covariance(observation.R, "observation R", true, observation.H.rows());
 }
 
 GaussianDensity kalman_predict(const GaussianDensity& prior, const LinearGaussianMotion& motion) {
