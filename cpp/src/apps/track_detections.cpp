@@ -6,6 +6,8 @@
 #include <memory>
 
 #include "vtrack/core/errors.hpp"
+#include "vtrack/core/interrupt.hpp"
+#include "vtrack/core/limits.hpp"
 
 namespace vtrack::apps {
 namespace {
@@ -69,7 +71,8 @@ void validate(const BoxTrackerParams& p) {
   require(p.birth_max_existence > 0 && p.birth_max_existence < 1, "birth_max_existence",
           p.birth_max_existence, "in (0, 1)");
   validate(p.management);
-  require(p.hypothesis_budget > 0, "hypothesis_budget", p.hypothesis_budget, "> 0");
+  require(p.hypothesis_budget > 0 && p.hypothesis_budget <= core::kMaxHypotheses,
+          "hypothesis_budget", p.hypothesis_budget, "in [1, 100000]");
   require(p.gate_threshold > 0, "gate_threshold", p.gate_threshold, "> 0 (or inf for no gating)");
   require(!std::isnan(p.min_confidence), "min_confidence", p.min_confidence, "a number");
 }
@@ -160,6 +163,14 @@ std::pair<int, int> detections_extent(const std::vector<Detection>& detections) 
     width = std::max(width, d.x + d.w);
     height = std::max(height, d.y + d.h);
   }
+  // Range-checked before narrowing to int (an image side beyond 2^20 px is no camera's).
+  for (const auto& [name, extent] : {std::pair{"x + w", width}, std::pair{"y + h", height}}) {
+    if (extent > core::kMaxImageSide) {
+      throw InvalidArgument(std::string("the detections reach ") + name + " = " +
+                            value_text(extent) + ", beyond the largest image side (" +
+                            std::to_string(core::kMaxImageSide) + " px): give the image size");
+    }
+  }
   return {static_cast<int>(std::ceil(width)), static_cast<int>(std::ceil(height))};
 }
 
@@ -168,7 +179,10 @@ std::vector<TrackRow> track_detections(const std::vector<Detection>& detections,
                                        long long last_frame, const FrameProgress& progress) {
   if (width == 0 || height == 0) std::tie(width, height) = detections_extent(detections);
   BoxTracker tracker(width, height, params);  // validates the parameters and the image size
-  if (last_frame < 0) throw InvalidArgument("last_frame must be >= 0, got " + std::to_string(last_frame));
+  if (last_frame < 0 || last_frame > core::kMaxFrame) {
+    throw InvalidArgument("last_frame must be in [0, " + std::to_string(core::kMaxFrame) + "], got " +
+                          std::to_string(last_frame));
+  }
   long long last = last_frame;
   for (std::size_t i = 0; i < detections.size(); ++i) {
     validate_detection(detections[i], "detection " + std::to_string(i) + ": ");
@@ -182,12 +196,31 @@ std::vector<TrackRow> track_detections(const std::vector<Detection>& detections,
   std::vector<TrackRow> rows;
   std::vector<Detection> frame_detections;
   auto next = sorted.begin();
+  // Idle: nothing tracked, remembered (lost-track memory) or about to be born (adaptive births
+  // come from the previous frame's detections). An empty frame then changes nothing but the
+  // filter's step count and reports nothing, so the loop jumps to the next frame with
+  // detections: the cost depends on the number of detections, not on the frame numbers (a row
+  // at frame 10^14 or last_frame = 10^12 would otherwise step through every empty frame).
+  bool idle = true;
+  long long reported = 0;  // the last frame given to `progress`
   for (long long frame = 1; frame <= last; ++frame) {
+    if (idle) {
+      frame = next == sorted.end() ? last + 1 : next->frame;
+      if (frame > last) break;
+    }
     frame_detections.clear();
     for (; next != sorted.end() && next->frame == frame; ++next) frame_detections.push_back(*next);
-    append_rows(rows, frame, tracker.step(frame_detections));
-    if (progress) progress(frame, last);
+    const filters::Tracks& tracks = tracker.step(frame_detections);
+    append_rows(rows, frame, tracks);
+    const bool any_kept =
+        std::any_of(frame_detections.begin(), frame_detections.end(),
+                    [&](const Detection& d) { return d.confidence >= params.min_confidence; });
+    idle = !any_kept && tracker.tracker().track_count() == 0 &&
+           tracker.tracker().management().lost_count() == 0;
+    if (progress) progress(reported = frame, last);
+    core::poll_interrupt();
   }
+  if (progress && reported < last) progress(last, last);  // the skipped frames are done too
   return rows;
 }
 
