@@ -289,18 +289,25 @@ vtrack::apps::PipelineParams track_params(const TrackOptions& o) {
   vtrack::apps::PipelineParams params;
   params.method = o.method;
   params.detector = o.detector;
-  if (!o.config.empty()) vtrack::apps::apply_config(params, vtrack::apps::read_config(o.config));
+  const auto validate = [&] {
+    if (o.method == "glmb" && o.detector.empty()) {
+      vtrack::apps::validate(params.box);  // the boxes come from a file
+    } else {
+      vtrack::apps::validate(params);
+    }
+  };
+  if (!o.config.empty()) {
+    // A value out of range in the file is bad data (exit 1), in --set/--seed a usage error (2).
+    vtrack::apps::apply_config(params, vtrack::apps::read_config(o.config));
+    if (o.settings.empty() && !o.seed) validate();
+  }
   as_usage([&] {
     if (o.seed) vtrack::apps::set_pipeline_parameter(params, "seed", *o.seed);
     for (const auto& setting : o.settings) {
       const auto [name, value] = parse_setting(setting);
       vtrack::apps::set_pipeline_parameter(params, name, value);
     }
-    if (o.method == "glmb" && o.detector.empty()) {
-      vtrack::apps::validate(params.box);  // the boxes come from a file
-    } else {
-      vtrack::apps::validate(params);
-    }
+    validate();
   });
   return params;
 }

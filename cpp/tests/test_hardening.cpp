@@ -185,6 +185,20 @@ TEST_F(Scratch, TextFilesAreRefusedBeforeTheParserSeesThem) {
                vtrack::IoError);
   EXPECT_EQ(vtrack::core::flow_nesting("a: '[[[' \"{{\\\"\" [x]"), 1);  // quotes do not count
 
+  // Not UTF-8 (found by fuzz_config: load_config raised UnicodeDecodeError): named by line.
+  using vtrack::core::invalid_utf8_offset;
+  EXPECT_EQ(invalid_utf8_offset("a: \xc3\xa9 \xe2\x82\xac \xf0\x9f\x98\x80"), std::string::npos);
+  EXPECT_EQ(invalid_utf8_offset("ab\xff"), 2u);
+  EXPECT_EQ(invalid_utf8_offset("\xc0\xaf"), 0u);          // overlong '/'
+  EXPECT_EQ(invalid_utf8_offset("x\xed\xa0\x80"), 1u);    // a UTF-16 surrogate
+  EXPECT_EQ(invalid_utf8_offset("x\xe2\x82"), 1u);         // cut short
+  try {
+    read_text_file(file("bytes.yml", "seed: 1\ntracker: {delta_f: \xff}\n"), "config file", 100);
+    ADD_FAILURE() << "a non-UTF-8 file was read";
+  } catch (const vtrack::IoError& e) {
+    EXPECT_NE(std::string(e.what()).find("line 2 is not UTF-8"), std::string::npos) << e.what();
+  }
+
   // The config reader: block nesting past yaml-cpp's recursion limit, a map as a name, two
   // documents.
   std::string deep;

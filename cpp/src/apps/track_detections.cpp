@@ -67,7 +67,10 @@ void validate(const BoxTrackerParams& p) {
       {"detection_sd_size", p.detection_sd_size}, {"birth_sd_centre", p.birth_sd_centre},
       {"birth_sd_velocity", p.birth_sd_velocity}, {"birth_sd_size", p.birth_sd_size},
       {"birth_rate", p.birth_rate}};
-  for (const auto& [name, v] : positive) require(v > 0 && std::isfinite(v), name, v, "> 0 and finite");
+  // Squared into covariances: a square that overflows would reach the filter as an inf in Q or R.
+  for (const auto& [name, v] : positive) {
+    require(v > 0 && std::isfinite(v * v), name, v, "> 0 with a finite square");
+  }
   require(p.birth_max_existence > 0 && p.birth_max_existence < 1, "birth_max_existence",
           p.birth_max_existence, "in (0, 1)");
   validate(p.management);

@@ -1,6 +1,7 @@
 #include "vtrack/core/text_file.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -26,6 +27,38 @@ int flow_nesting(const std::string& text) {
   return deepest;
 }
 
+std::size_t invalid_utf8_offset(const std::string& text) {
+  const auto* s = reinterpret_cast<const unsigned char*>(text.data());
+  const std::size_t n = text.size();
+  std::size_t i = 0;
+  while (i < n) {
+    const unsigned char c = s[i];
+    // The sequence length and the smallest code point it may encode (no overlong forms).
+    int length = 0;
+    std::uint32_t code = 0, least = 0;
+    if (c < 0x80) {
+      ++i;
+      continue;
+    } else if ((c & 0xE0) == 0xC0) {
+      length = 2, code = c & 0x1Fu, least = 0x80;
+    } else if ((c & 0xF0) == 0xE0) {
+      length = 3, code = c & 0x0Fu, least = 0x800;
+    } else if ((c & 0xF8) == 0xF0) {
+      length = 4, code = c & 0x07u, least = 0x10000;
+    } else {
+      return i;
+    }
+    if (i + static_cast<std::size_t>(length) > n) return i;
+    for (int k = 1; k < length; ++k) {
+      if ((s[i + k] & 0xC0) != 0x80) return i;
+      code = (code << 6) | (s[i + k] & 0x3Fu);
+    }
+    if (code < least || code > 0x10FFFF || (code >= 0xD800 && code <= 0xDFFF)) return i;
+    i += static_cast<std::size_t>(length);
+  }
+  return std::string::npos;
+}
+
 std::string read_text_file(const std::string& path, const std::string& what,
                            std::size_t max_bytes, int max_flow_nesting) {
   namespace fs = std::filesystem;
@@ -45,6 +78,13 @@ std::string read_text_file(const std::string& path, const std::string& what,
   std::string text = buffer.str();
   if (text.size() > max_bytes) {  // grew since file_size
     throw IoError(what + " '" + path + "' is larger than " + std::to_string(max_bytes) + " bytes");
+  }
+  // YAML and JSON are Unicode text; a stray byte would otherwise reach the parser's messages and
+  // Python's str() undecoded.
+  if (const std::size_t bad = invalid_utf8_offset(text); bad != std::string::npos) {
+    const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(bad), '\n');
+    throw IoError("cannot read " + what + " '" + path + "': line " + std::to_string(line) +
+                  " is not UTF-8 text");
   }
   if (max_flow_nesting >= 0 && flow_nesting(text) > max_flow_nesting) {
     throw IoError("cannot parse " + what + " '" + path + "': nested deeper than " +
