@@ -68,6 +68,18 @@ def test_deeply_nested_config_is_refused_not_a_stack_overflow(tmp_path):
         vtrack.load_config(block)
 
 
+def test_a_stray_comma_is_a_syntax_error_not_a_hang(tmp_path):
+    # Found by fuzz_config (fuzz/corpus/config/leading_comma.yml): yaml-cpp never returned from
+    # parsing ",", allocating until the process was killed.
+    for text in (",", "seed: 1\n- 1\n,\n", "---\n ,", "&&&,&&\n"):
+        config = tmp_path / "c.yml"
+        config.write_text(text)
+        with pytest.raises(OSError, match=r"line \d+: ',' outside \[ \] or \{ \}"):
+            vtrack.load_config(config)
+    config.write_text("tracker: {delta_f: 0.2\n , delta_b: 0.001}\n")
+    assert vtrack.load_config(config) == {"tracker": {"delta_f": 0.2, "delta_b": 0.001}}
+
+
 def test_one_tracker_stepped_from_two_threads_is_serialised():
     # step() releases the GIL; two threads stepping one tracker crashed. Now the calls take
     # turns: 2 x 6 steps of the same frame from two threads give what 12 serial steps give.

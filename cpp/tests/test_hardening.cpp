@@ -185,6 +185,17 @@ TEST_F(Scratch, TextFilesAreRefusedBeforeTheParserSeesThem) {
                vtrack::IoError);
   EXPECT_EQ(vtrack::core::flow_nesting("a: '[[[' \"{{\\\"\" [x]"), 1);  // quotes do not count
 
+  // A ',' where a block node starts hung yaml-cpp, allocating without end (found by fuzz_config).
+  using vtrack::core::stray_comma_line;
+  EXPECT_EQ(stray_comma_line(","), 1);
+  EXPECT_EQ(stray_comma_line("a: 1\n- 1\n  ,"), 3);
+  EXPECT_EQ(stray_comma_line("---\n ,"), 2);
+  EXPECT_EQ(stray_comma_line("a: [1\n, 2]\nb: {c: 1\n ,d: 2}\n"), 0);  // inside flow: valid
+  EXPECT_EQ(stray_comma_line("a: 'x\n,y'\nb: \"1, 2\" # ,\n# ,\n"), 0);  // quoted, comments
+  EXPECT_EQ(stray_comma_line("a: 1\nb: &&&,&&\n"), 2);  // after an anchor (found by fuzz_config)
+  EXPECT_THROW(vtrack::apps::read_config(file("comma.yml", "seed: 1\n,\n")), vtrack::IoError);
+  EXPECT_THROW(vtrack::apps::read_config(file("nul.yml", std::string("\0,", 2))), vtrack::IoError);
+
   // Not UTF-8 (found by fuzz_config: load_config raised UnicodeDecodeError): named by line.
   using vtrack::core::invalid_utf8_offset;
   EXPECT_EQ(invalid_utf8_offset("a: \xc3\xa9 \xe2\x82\xac \xf0\x9f\x98\x80"), std::string::npos);

@@ -59,6 +59,32 @@ std::size_t invalid_utf8_offset(const std::string& text) {
   return std::string::npos;
 }
 
+int stray_comma_line(const std::string& text) {
+  int depth = 0, line = 1;
+  char quote = 0;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\n') {
+      ++line;
+      continue;  // quoted scalars may span lines: `quote` stays
+    }
+    if (quote) {
+      if (c == '\\' && quote == '"') ++i;
+      else if (c == quote) quote = 0;
+      continue;
+    }
+    if (c == '#' && (i == 0 || text[i - 1] == ' ' || text[i - 1] == '\n' || text[i - 1] == '\t')) {
+      while (i + 1 < text.size() && text[i + 1] != '\n') ++i;  // a comment to the line's end
+      continue;
+    }
+    if (c == ',' && depth == 0) return line;
+    if (c == '"' || c == '\'') quote = c;
+    else if (c == '[' || c == '{') ++depth;
+    else if (c == ']' || c == '}') depth = std::max(0, depth - 1);
+  }
+  return 0;
+}
+
 std::string read_text_file(const std::string& path, const std::string& what,
                            std::size_t max_bytes, int max_flow_nesting) {
   namespace fs = std::filesystem;
@@ -85,6 +111,25 @@ std::string read_text_file(const std::string& path, const std::string& what,
     const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(bad), '\n');
     throw IoError("cannot read " + what + " '" + path + "': line " + std::to_string(line) +
                   " is not UTF-8 text");
+  }
+  if (max_flow_nesting >= 0) {
+    // YAML admits no control characters but tab, CR and LF (yaml-cpp hung on "\0,").
+    const auto control = std::find_if(text.begin(), text.end(), [](char c) {
+      const auto u = static_cast<unsigned char>(c);
+      return (u < 0x20 && c != '\t' && c != '\n' && c != '\r') || u == 0x7f;
+    });
+    if (control != text.end()) {
+      throw IoError("cannot parse " + what + " '" + path + "': line " +
+                    std::to_string(1 + std::count(text.begin(), control, '\n')) +
+                    " holds a control character");
+    }
+    // yaml-cpp loops forever, allocating, on some ',' outside flow collections (",", "- 1\n,",
+    // "&a,"). Parameters never need one there (lists are [a, b]), so every such ',' is refused
+    // before the parser sees it; a comma inside a plain string value is the price.
+    if (const int line = stray_comma_line(text)) {
+      throw IoError("cannot parse " + what + " '" + path + "': line " + std::to_string(line) +
+                    ": ',' outside [ ] or { }");
+    }
   }
   if (max_flow_nesting >= 0 && flow_nesting(text) > max_flow_nesting) {
     throw IoError("cannot parse " + what + " '" + path + "': nested deeper than " +
