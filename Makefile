@@ -44,6 +44,7 @@ demo: $(VENV)/.vtrack-installed $(VIDEO)
 
 bench: $(VENV)/.vtrack-installed $(VENV)/.bench-deps $(VIDEO)
 	$(PY) benchmarks/resampling.py
+	$(PY) benchmarks/particle_filter.py
 	$(PY) benchmarks/murty.py
 	$(PY) benchmarks/glmb_standard.py
 	$(PY) benchmarks/rgbd_switching.py --figure $(DEMO_OUT)/rgbd_switching.png
@@ -75,7 +76,7 @@ $(VENV)/.dev-deps: requirements/dev.txt requirements/eval.txt | $(BUILD)/.system
 
 $(VENV)/.bench-deps: requirements/bench.txt requirements/bench-nodeps.txt $(VENV)/.dev-deps
 	$(PY) -m pip install --quiet -r requirements/bench.txt || echo "some benchmark peers failed to install; their rows will be skipped"
-	$(PY) -m pip install --quiet --no-deps -r requirements/bench-nodeps.txt || echo "a --no-deps benchmark peer failed to install; its rows will be skipped"
+	$(PY) -m pip install --quiet --no-deps -r requirements/bench-nodeps.txt || echo "a --no-deps benchmark peer failed to install (sort-track, norfair, trackers, particles); its rows will be skipped"
 	$(PY) -m pip install --quiet --no-deps --upgrade --target $(VENV)/opencv-contrib \
 	  "opencv-contrib-python-headless==$$($(PY) -c 'from importlib.metadata import version; print(version("opencv-python-headless"))')" \
 	  || echo "opencv-contrib failed to install; benchmarks/follow.py will skip CSRT and KCF"

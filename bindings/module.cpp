@@ -58,4 +58,5 @@ PYBIND11_MODULE(_core, m) {
   vtrack::bindings::bind_apps(m);
   vtrack::bindings::bind_detections(m);
   vtrack::bindings::bind_vehicles(m);
+  vtrack::bindings::bind_smc(m);
 }

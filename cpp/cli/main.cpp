@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <functional>
 #include <iostream>
@@ -344,8 +345,12 @@ std::string json_value(const vtrack::core::ParameterValue& v) {
   if (const auto* d = std::get_if<double>(&v)) {
     if (std::isnan(*d)) return "NaN";
     if (std::isinf(*d)) return *d > 0 ? "Infinity" : "-Infinity";
+    // The shortest of %.15g..%.17g that reads back as the same double (0.1, not 0.10000000000000001).
     char text[32];
-    std::snprintf(text, sizeof text, "%.17g", *d);
+    for (int digits = 15; digits <= 17; ++digits) {
+      std::snprintf(text, sizeof text, "%.*g", digits, *d);
+      if (std::strtod(text, nullptr) == *d) break;
+    }
     return text;
   }
   if (const auto* r = std::get_if<std::vector<double>>(&v)) {
@@ -465,7 +470,7 @@ const std::vector<Command>& commands() {
        "                    [--config FILE] [--seed N] [--set name=value ...]\n\n"
        "  VIDEO            a video file or a folder of images\n"
        "  --out TRACKS     MOTChallenge text: frame,id,x,y,w,h,conf,-1,-1,-1 (frames from 1,\n"
-       "                   conf = existence probability); written only when tracking succeeded\n"
+       "                   conf = the track's score); written only when tracking succeeded\n"
        "  --method mb      the multi-Bernoulli track-before-detect tracker (mb-tbd paper)\n"
        "  --method glmb    the delta-GLMB tracker on image boxes (state: box centre, velocity,\n"
        "                   size), from a MOTChallenge det file or from HOG people detections\n"

@@ -3,7 +3,7 @@
 The filters of four papers in C++ with this Python API. Built so far: kernel-density background
 subtraction with a multi-Bernoulli track-before-detect tracker (mb-tbd paper), and a labelled
 RFS (delta-GLMB) tracker with Murty's ranked assignments and the RGB-D switching observation
-model, plus a box tracker for any detector's output.
+model, plus a box tracker for any detector's output, and generic SIR / MCMC particle filters.
 
 The main entry points are here; the rest lives in submodules that mirror the C++ layers:
 
@@ -13,7 +13,8 @@ The main entry points are here; the rest lives in submodules that mirror the C++
 ``vtrack.image``              ``KdeBackground``, morphology, integral images, color histograms
 ``vtrack.detectors``          ``HogPeopleDetector``
 ``vtrack.models``             motion / observation models, the depth likelihood
-``vtrack.smc``                random engine, weights, ESS, resampling, Gaussians
+``vtrack.smc``                ``ParticleFilter``, ``MCMCParticleFilter`` (also here); random
+                              engine, weights, ESS, resampling, Gaussians
 ``vtrack.assign``             linear assignment, Murty, Gibbs assignments
 ``vtrack.metrics``            OSPA, OSPA(2), GOSPA (CLEAR-MOT/IDF1/HOTA: ``vtrack.evaluate``)
 ``vtrack.io``                 MOTChallenge files, config files, video probing
@@ -48,7 +49,9 @@ from ._core import (
     KdeBackground,
     LinearGaussianMotion,
     LinearGaussianObservation,
+    MCMCParticleFilter,
     MultiBernoulliTracker,
+    ParticleFilter,
     Rng,
     Tracks,
     __version__,
@@ -69,7 +72,9 @@ __all__ = [
     "KdeBackground",
     "LinearGaussianMotion",
     "LinearGaussianObservation",
+    "MCMCParticleFilter",
     "MultiBernoulliTracker",
+    "ParticleFilter",
     "Rng",
     "Tracks",
     "__version__",

@@ -9,11 +9,6 @@
 #include "vtrack/core/errors.hpp"
 
 namespace vtrack::core {
-namespace {
-
-constexpr double kLog2Pi = 1.8378770664093454835606594728112;
-
-}  // namespace
 
 void require_covariance(const Eigen::Ref<const Eigen::MatrixXd>& cov, const std::string& name,
                         bool definite, Eigen::Index dim) {

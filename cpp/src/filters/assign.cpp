@@ -90,7 +90,6 @@ class Solver {
     }
     scanned_rows.clear();
     scanned_cols.clear();
-    const auto is_sink = [&](int j) { return released < 0 ? row4col[j] < 0 : j == released; };
     double min_val = 0.0;
     int i = row;                      // the row to scan next, or kDummy
     int relay = -1;                   // the unassigned column through which the dummy was entered
@@ -98,59 +97,15 @@ class Solver {
     int sink = -1;
     while (sink < 0) {
       double lowest = kInf;
-      std::size_t best = 0;
-      if (i != kDummy) {
-        // The hot loop: raw pointers, so the compiler need not reload the vectors' data
-        // pointers after every store.
-        const double* ci = &c[static_cast<std::size_t>(i) * m];
-        const double* vv = v.data();
-        const int* rem = remaining.data();
-        double* sp = spc.data();
-        int* pa = path.data();
-        const double base = min_val - u[i];
-        const std::size_t count = remaining.size();
-        for (std::size_t r = 0; r < count; ++r) {
-          const int j = rem[r];
-          const double d = base + ci[j] - vv[j];
-          if (d < sp[j]) {
-            sp[j] = d;
-            pa[j] = i;
-          }
-          // Ties go to a sink: the path ends sooner (Crouse).
-          if (sp[j] < lowest || (sp[j] == lowest && is_sink(j))) {
-            lowest = sp[j];
-            best = r;
-          }
-        }
-      } else {
-        for (std::size_t r = 0; r < remaining.size();) {
-          const int j = remaining[r];
-          const double d = min_val - v[j];
-          if (d < spc[j]) {
-            spc[j] = d;
-            path[j] = kDummy;
-          }
-          if (row4col[j] < 0 && j != released) {
-            // Another unassigned column: its dummy row adds nothing, settle it now.
-            scanned_cols.push_back(j);
-            remaining[r] = remaining.back();
-            remaining.pop_back();
-            continue;
-          }
-          if (spc[j] < lowest || (spc[j] == lowest && is_sink(j))) {
-            lowest = spc[j];
-            best = r;
-          }
-          ++r;
-        }
-      }
+      const std::size_t best = i != kDummy ? scan_row(i, min_val, released, lowest)
+                                           : scan_dummy(min_val, released, lowest);
       if (lowest == kInf) return false;  // nothing reachable: no duals or assignment were touched
       min_val = lowest;
       const int j = remaining[best];
       remaining[best] = remaining.back();
       remaining.pop_back();
       scanned_cols.push_back(j);
-      if (is_sink(j)) {
+      if (is_sink(j, released)) {
         sink = j;
       } else if (row4col[j] >= 0) {
         i = row4col[j];
@@ -161,8 +116,70 @@ class Solver {
         i = kDummy;
       }
     }
+    update_duals(row, min_val, relay, relay_dist);
+    flip_path(row, sink, relay);
+    return true;
+  }
 
-    // Dual update as in Crouse (2016): keeps u_i + v_j <= c_ij, tight on the new path.
+  bool is_sink(int j, int released) const { return released < 0 ? row4col[j] < 0 : j == released; }
+
+  // Relaxes the remaining columns' path lengths through row i; returns the index (into
+  // `remaining`) of the closest column, ties going to a sink (the path ends sooner, Crouse), and
+  // its length in `lowest` (kInf when none is reachable).
+  std::size_t scan_row(int i, double min_val, int released, double& lowest) {
+    // The hot loop: raw pointers, so the compiler need not reload the vectors' data pointers
+    // after every store.
+    const double* ci = &c[static_cast<std::size_t>(i) * m];
+    const double* vv = v.data();
+    const int* rem = remaining.data();
+    double* sp = spc.data();
+    int* pa = path.data();
+    const double base = min_val - u[i];
+    const std::size_t count = remaining.size();
+    std::size_t best = 0;
+    for (std::size_t r = 0; r < count; ++r) {
+      const int j = rem[r];
+      const double d = base + ci[j] - vv[j];
+      if (d < sp[j]) {
+        sp[j] = d;
+        pa[j] = i;
+      }
+      if (sp[j] < lowest || (sp[j] == lowest && is_sink(j, released))) {
+        lowest = sp[j];
+        best = r;
+      }
+    }
+    return best;
+  }
+
+  // The same through the (first) dummy row of Murty's subproblem; the other unassigned columns
+  // are settled at once (their dummy rows add nothing).
+  std::size_t scan_dummy(double min_val, int released, double& lowest) {
+    std::size_t best = 0;
+    for (std::size_t r = 0; r < remaining.size();) {
+      const int j = remaining[r];
+      const double d = min_val - v[j];
+      if (d < spc[j]) {
+        spc[j] = d;
+        path[j] = kDummy;
+      }
+      if (row4col[j] < 0 && j != released) {
+        scanned_cols.push_back(j);
+        remaining[r] = remaining.back();
+        remaining.pop_back();
+        continue;
+      }
+      if (spc[j] < lowest || (spc[j] == lowest && is_sink(j, released))) {
+        lowest = spc[j];
+        best = r;
+      }
+      ++r;
+    }
+    return best;
+  }
+
+  // Dual update as in Crouse (2016): keeps u_i + v_j <= c_ij, tight on the new path.
+  void update_duals(int row, double min_val, int relay, double relay_dist) {
     u[row] += min_val;
     for (int r : scanned_rows) u[r] += min_val - spc[col4row[r]];
     for (int j : scanned_cols) v[j] -= min_val - spc[j];
@@ -173,8 +190,10 @@ class Solver {
       for (double& x : u) x -= shift;
       for (double& x : v) x += shift;
     }
+  }
 
-    // Flip the path, walking back from the sink.
+  // Flips the augmenting path, walking back from the sink.
+  void flip_path(int row, int sink, int relay) {
     int j = sink;
     while (true) {
       const int r = path[j];
@@ -187,7 +206,6 @@ class Solver {
       std::swap(col4row[r], j);
       if (r == row) break;
     }
-    return true;
   }
 
   // Solves from scratch (all rows free, duals 0). Returns the first row that cannot be assigned,

@@ -8,6 +8,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "vtrack/core/errors.hpp"
+#include "vtrack/core/gaussian.hpp"
 #include "vtrack/core/limits.hpp"
 #include "vtrack/core/resampling.hpp"
 #include "vtrack/core/weights.hpp"
@@ -17,7 +18,6 @@ namespace vtrack::filters {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kLog2Pi = 1.8378770664093454835606594728112;
 
 // Lower Cholesky factor of a covariance that must be positive definite; `what` names it.
 Eigen::MatrixXd cholesky_of(const Eigen::MatrixXd& cov, const std::string& what) {
@@ -72,7 +72,7 @@ ParticleTracks::ParticleTracks(ParticleParams params, std::uint64_t seed,
     throw InvalidArgument("observation R is not positive definite");
   }
   const Eigen::MatrixXd L = noise_llt_.matrixL();
-  log_g1_normaliser_ = -0.5 * static_cast<double>(L.rows()) * kLog2Pi -
+  log_g1_normaliser_ = -0.5 * static_cast<double>(L.rows()) * core::kLog2Pi -
                        L.diagonal().array().log().sum();
   if (depth_model_ && observation.H.rows() != 3) {
     throw InvalidArgument("a depth model needs 3-D detections (X, Y, D), got z_dim " +

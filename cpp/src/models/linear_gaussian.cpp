@@ -9,8 +9,6 @@
 namespace vtrack::models {
 namespace {
 
-constexpr double kLog2Pi = 1.8378770664093454835606594728112;
-
 void require_positive(double value, const char* name) {
   if (!(value > 0.0) || !std::isfinite(value)) {
     throw InvalidArgument(std::string(name) + " must be positive and finite, got " +
@@ -79,7 +77,7 @@ KalmanInnovation::KalmanInnovation(const GaussianDensity& predicted,
     throw InvalidArgument("innovation covariance H P H^T + R is not positive definite");
   }
   const Eigen::MatrixXd L = innovation_llt_.matrixL();
-  log_normaliser_ = -0.5 * static_cast<double>(S.rows()) * kLog2Pi -
+  log_normaliser_ = -0.5 * static_cast<double>(S.rows()) * core::kLog2Pi -
                     L.diagonal().array().log().sum();
   gain_ = innovation_llt_.solve(PHt.transpose()).transpose();  // K = P H^T S^{-1}
   const Eigen::Index n = predicted.mean.size();

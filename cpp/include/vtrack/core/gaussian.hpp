@@ -18,6 +18,9 @@ namespace vtrack::core {
 void require_covariance(const Eigen::Ref<const Eigen::MatrixXd>& cov, const std::string& name,
                         bool definite, Eigen::Index dim = -1);
 
+// log(2 pi): the normaliser of every Gaussian density in vtrack, -d/2 log(2 pi) - 1/2 log|C|.
+inline constexpr double kLog2Pi = 1.8378770664093454835606594728112;
+
 class Gaussian {
  public:
   Gaussian(Eigen::VectorXd mean, const Eigen::MatrixXd& covariance);

@@ -23,6 +23,8 @@ class Rng {
   // An engine with exactly this 256-bit state (not all zero), for checking against the reference
   // implementation.
   static Rng from_state(const std::array<std::uint64_t, 4>& state);
+  // The 256-bit state (for generators that run several xoshiro streams side by side, LaneRng).
+  std::array<std::uint64_t, 4> state() const { return {s_[0], s_[1], s_[2], s_[3]}; }
 
   // Raw 64-bit output; also makes Rng a UniformRandomBitGenerator for <algorithm>.
   std::uint64_t next() noexcept;

@@ -1,0 +1,163 @@
+// smc::ParticleSet and the reweighting of smc/reweight.hpp, against brute-force sums.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <set>
+
+#include "vtrack/core/errors.hpp"
+#include "vtrack/core/random.hpp"
+#include "vtrack/smc/particle_set.hpp"
+
+using namespace vtrack;
+using smc::ParticleSet;
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+ParticleSet<double> random_set(core::Rng& rng, Eigen::Index n, Eigen::Index d) {
+  Eigen::MatrixXd x(n, d);
+  rng.fill_normal(x.data(), static_cast<std::size_t>(x.size()));
+  Eigen::VectorXd lw(n);
+  rng.fill_normal(lw.data(), static_cast<std::size_t>(n));
+  return ParticleSet<double>(x, 3.0 * lw);
+}
+
+}  // namespace
+
+TEST(SmcParticleSet, ReweightReturnsTheLogNormaliserAndNormalisedWeights) {
+  core::Rng rng(1);
+  // 5000 particles: several blocks, so the blockwise sums are exercised.
+  ParticleSet<double> set = random_set(rng, 5000, 3);
+  const Eigen::VectorXd w0 = set.weights();
+  Eigen::VectorXd log_lik(5000);
+  rng.fill_normal(log_lik.data(), 5000);
+  log_lik *= 4.0;
+  log_lik[7] = -kInf;  // a particle the data rule out
+  const auto result = set.reweight(log_lik);
+  // Brute force: rho = sum_i w_i l_i, w_i' = w_i l_i / rho.
+  long double rho = 0;
+  for (int i = 0; i < 5000; ++i) rho += w0[i] * std::exp(static_cast<long double>(log_lik[i]));
+  EXPECT_NEAR(result.log_normaliser, std::log(static_cast<double>(rho)), 1e-12);
+  double sum_sq = 0;
+  Eigen::Index best = 0;
+  for (int i = 0; i < 5000; ++i) {
+    const double expected = w0[i] * std::exp(log_lik[i]) / static_cast<double>(rho);
+    EXPECT_NEAR(set.weights()[i], expected, 1e-14 + 1e-12 * expected);
+    EXPECT_NEAR(std::exp(set.log_weights()[i]), set.weights()[i], 1e-15);
+    sum_sq += expected * expected;
+    if (expected > w0[best] * std::exp(log_lik[best]) / static_cast<double>(rho)) best = i;
+  }
+  EXPECT_EQ(set.weights()[7], 0.0);
+  EXPECT_NEAR(set.ess(), 1.0 / sum_sq, 1e-9 / sum_sq);  // eq. 7
+  EXPECT_EQ(set.map_index(), best);
+  EXPECT_EQ(result.map_index, best);
+}
+
+TEST(SmcParticleSet, AllLikelihoodsZeroKeepsTheWeights) {
+  core::Rng rng(2);
+  ParticleSet<double> set = random_set(rng, 3000, 2);
+  const Eigen::VectorXd before = set.log_weights();
+  const auto result = set.reweight(Eigen::VectorXd::Constant(3000, -kInf));
+  EXPECT_FALSE(result.updated());
+  EXPECT_EQ(result.log_normaliser, -kInf);
+  EXPECT_EQ(set.log_weights(), before);
+  EXPECT_TRUE(set.mean().allFinite());
+}
+
+TEST(SmcParticleSet, NanOrPlusInfLikelihoodIsAnError) {
+  core::Rng rng(3);
+  ParticleSet<double> set = random_set(rng, 2500, 2);
+  const Eigen::VectorXd before = set.log_weights();
+  Eigen::VectorXd log_lik = Eigen::VectorXd::Zero(2500);
+  log_lik[2100] = std::nan("");
+  try {
+    set.reweight(log_lik);
+    FAIL() << "expected InvalidArgument";
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("particle 2100"), std::string::npos) << e.what();
+  }
+  log_lik[2100] = kInf;
+  EXPECT_THROW(set.reweight(log_lik), InvalidArgument);
+  EXPECT_EQ(set.log_weights(), before);  // unchanged by the failed updates
+}
+
+TEST(SmcParticleSet, ReweightIsIdenticalForAnyThreadCount) {
+  core::Rng rng(4);
+  const ParticleSet<double> base = random_set(rng, 20000, 2);
+  Eigen::VectorXd log_lik(20000);
+  rng.fill_normal(log_lik.data(), 20000);
+  ParticleSet<double> one = base, two = base, all = base;
+  const auto r1 = one.reweight(log_lik, 1);
+  const auto r2 = two.reweight(log_lik, 2);
+  const auto r0 = all.reweight(log_lik, 0);
+  EXPECT_EQ(r1.log_normaliser, r2.log_normaliser);
+  EXPECT_EQ(r1.log_normaliser, r0.log_normaliser);
+  EXPECT_EQ(one.weights(), two.weights());
+  EXPECT_EQ(one.weights(), all.weights());
+  EXPECT_EQ(one.ess(), two.ess());
+}
+
+TEST(SmcParticleSet, MeanCovarianceAndMapAreTheWeightedOnes) {
+  core::Rng rng(5);
+  const ParticleSet<double> set = random_set(rng, 400, 3);
+  const Eigen::MatrixXd& x = set.states();
+  const Eigen::VectorXd& w = set.weights();
+  Eigen::VectorXd mean = Eigen::VectorXd::Zero(3);
+  for (int i = 0; i < 400; ++i) mean += w[i] * x.row(i).transpose();
+  Eigen::MatrixXd cov = Eigen::MatrixXd::Zero(3, 3);
+  for (int i = 0; i < 400; ++i) {
+    const Eigen::VectorXd d = x.row(i).transpose() - mean;
+    cov += w[i] * d * d.transpose();
+  }
+  EXPECT_LT((set.mean() - mean).norm(), 1e-12);
+  EXPECT_LT((set.covariance() - cov).norm(), 1e-12);
+  Eigen::Index best;
+  w.maxCoeff(&best);
+  EXPECT_EQ(set.map_estimate(), x.row(best).transpose());
+}
+
+TEST(SmcParticleSet, ResamplesToAnySizeWithEveryScheme) {
+  for (const auto scheme : {core::ResamplingScheme::Multinomial, core::ResamplingScheme::Stratified,
+                            core::ResamplingScheme::Systematic, core::ResamplingScheme::Residual}) {
+    core::Rng rng(6);
+    Eigen::MatrixXf x(300, 4);  // float boxes, as the multi-Bernoulli filter's
+    for (int i = 0; i < 300; ++i) x.row(i).setConstant(static_cast<float>(i));
+    Eigen::VectorXd lw(300);
+    for (int i = 0; i < 300; ++i) lw[i] = i % 3 == 0 ? -kInf : -0.01 * i;  // a third weigh zero
+    ParticleSet<float, 4> set(x, lw);
+    for (const Eigen::Index count : {50, 300, 1234}) {
+      ParticleSet<float, 4> copy = set;
+      copy.resample(scheme, count, rng);
+      ASSERT_EQ(copy.size(), count);
+      EXPECT_NEAR(copy.weights().sum(), 1.0, 1e-12);
+      EXPECT_EQ(copy.ess(), static_cast<double>(count));
+      for (Eigen::Index j = 0; j < count; ++j) {
+        const auto a = copy.ancestors()[static_cast<std::size_t>(j)];
+        EXPECT_NE(a % 3, 0) << "zero-weight particle " << a << " survived " << core::to_string(scheme);
+        EXPECT_EQ(copy.states()(j, 2), static_cast<float>(a));  // the ancestor's whole row
+      }
+    }
+  }
+}
+
+TEST(SmcParticleSet, ResamplingIsIdenticalForAnyThreadCount) {
+  core::Rng r(7);
+  const ParticleSet<double> base = random_set(r, 10000, 4);
+  ParticleSet<double> a = base, b = base;
+  core::Rng ra(8), rb(8);
+  a.resample(core::ResamplingScheme::Systematic, 12000, ra, 1);
+  b.resample(core::ResamplingScheme::Systematic, 12000, rb, 2);
+  EXPECT_EQ(a.states(), b.states());
+}
+
+TEST(SmcParticleSet, RejectsBadWeights) {
+  Eigen::MatrixXd x = Eigen::MatrixXd::Zero(3, 2);
+  EXPECT_THROW(ParticleSet<double>(x, Eigen::VectorXd::Constant(3, -kInf)), InvalidArgument);
+  EXPECT_THROW(ParticleSet<double>(x, Eigen::Vector3d(0.0, std::nan(""), 0.0)), InvalidArgument);
+  EXPECT_THROW(ParticleSet<double>(x, Eigen::Vector2d(0.0, 0.0)), InvalidArgument);
+  ParticleSet<double> set(x);
+  core::Rng rng(1);
+  EXPECT_THROW(set.resample(core::ResamplingScheme::Systematic, 0, rng), InvalidArgument);
+}
