@@ -4,6 +4,7 @@
 #   make test   system packages, .venv, build + install vtrack, then ctest and pytest
 #   make demo   the same set-up, fetch the sample video (PETS2009 S2.L1), run the main job
 #   make bench  the benchmarks in benchmarks/ (needs the sample video too)
+#   make fuzz   the atheris fuzz harnesses of fuzz/, FUZZ_SECONDS (300) each
 
 PYTHON ?= python3
 VENV := .venv
@@ -19,11 +20,17 @@ APT_PACKAGES := build-essential libeigen3-dev libopencv-dev libgtest-dev libyaml
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 SOURCES := CMakeLists.txt pyproject.toml $(shell find cpp bindings python -type f -not -name '*.pyc' 2>/dev/null)
 
-.PHONY: test demo bench build clean
+FUZZ_SECONDS ?= 300
+
+.PHONY: test demo bench build clean fuzz
 
 test: $(VENV)/.vtrack-installed $(VIDEO)
 	$(VENV)/bin/ctest --test-dir $(BUILD)/wheel --output-on-failure -j2
 	$(PY) -m pytest -q
+	$(PY) fuzz/run.py --seconds 12
+
+fuzz: $(VENV)/.vtrack-installed
+	$(PY) fuzz/run.py --seconds $(FUZZ_SECONDS) --random
 
 demo: $(VENV)/.vtrack-installed $(VIDEO)
 	mkdir -p $(DEMO_OUT)

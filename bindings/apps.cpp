@@ -5,6 +5,7 @@
 
 #include <pybind11/stl/filesystem.h>
 
+#include "args.hpp"
 #include "common.hpp"
 #include "params.hpp"
 #include "tracks.hpp"
@@ -116,9 +117,11 @@ void bind_apps(py::module_& m) {
 
   m.def(
       "probe_video",
-      [](const std::filesystem::path& path) {
+      [](const py::handle& path) {
+        const std::string file = path_arg(path, "path");
+        PythonInterrupts interrupts;  // decodes every frame
         py::gil_scoped_release release;
-        return apps::probe_video(path.string());
+        return apps::probe_video(file);
       },
       py::arg("path"),
       "Decode a video file or image folder to the end and report its exact frame count, size "
@@ -126,11 +129,12 @@ void bind_apps(py::module_& m) {
 
   m.def(
       "load_config",
-      [](const std::filesystem::path& path) {
+      [](const py::handle& path) {
+        const std::string file = path_arg(path, "path");
         apps::Config config;
         {
           py::gil_scoped_release release;
-          config = apps::read_config(path.string());
+          config = apps::read_config(file);
         }
         return config_dict(config);
       },
@@ -164,15 +168,19 @@ and ValueError for a malformed document.
 
   m.def(
       "track_video",
-      [](const std::filesystem::path& video, const std::string& method,
-         const std::string& detector, const py::dict& config, const py::dict& params,
-         const std::optional<std::filesystem::path>& render, const py::object& progress) {
-        const apps::PipelineParams p = pipeline_params(method, detector, config, params, {});
+      [](const py::handle& video_arg, const py::handle& method, const py::handle& detector,
+         const py::dict& config, const py::dict& params, const py::handle& render_arg,
+         const py::object& progress) {
+        const std::string video = path_arg(video_arg, "video");
+        const std::string render = render_arg.is_none() ? "" : path_arg(render_arg, "render");
+        const apps::PipelineParams p = pipeline_params(
+            str_arg(method, "method"), str_arg(detector, "detector"), config, params, {});
         const apps::FrameProgress report = progress_callback(progress);
         apps::PipelineResult result;
         {
+          PythonInterrupts interrupts;
           py::gil_scoped_release release;
-          result = apps::track_video(video.string(), p, render ? render->string() : "", report);
+          result = apps::track_video(video, p, render, report);
         }
         return py::make_tuple(track_rows(result.tracks), detection_rows(result.detections),
                               result.frames);

@@ -3,6 +3,9 @@
 #include <string>
 #include <vector>
 
+#include <limits>
+
+#include "args.hpp"
 #include "common.hpp"
 #include "vtrack/image/color_histogram.hpp"
 
@@ -22,10 +25,8 @@ ColorHistogramParams histogram_params(const py::handle& bins, bool kernel) {
   const auto seq = py::reinterpret_borrow<py::sequence>(bins);
   for (int i = 0; i < 3; ++i) {
     const py::object v = seq[static_cast<std::size_t>(i)];
-    if (py::isinstance<py::bool_>(v) || !PyIndex_Check(v.ptr())) {
-      throw py::type_error("bins must hold ints, got " + type_name(v));
-    }
-    n[i] = py::int_(v).cast<int>();
+    n[i] = static_cast<int>(int_arg(v, "bins", std::numeric_limits<int>::min(),
+                                    std::numeric_limits<int>::max()));
   }
   ColorHistogramParams p{n[0], n[1], n[2], kernel};
   image::validate(p);

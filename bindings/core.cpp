@@ -1,7 +1,12 @@
 // Bindings of vtrack::core: random engine, log-domain weights, resampling, Gaussian.
 #include <optional>
 
+#include <limits>
+
+#include "args.hpp"
 #include "common.hpp"
+#include "guard.hpp"
+#include "params.hpp"
 #include "vtrack/core/gaussian.hpp"
 #include "vtrack/core/resampling.hpp"
 #include "vtrack/core/weights.hpp"
@@ -9,17 +14,25 @@
 namespace vtrack::bindings {
 namespace {
 
-py::ssize_t checked_size(py::ssize_t size, const char* name) {
-  if (size < 0) throw py::value_error(std::string(name) + " must be >= 0, got " + std::to_string(size));
-  return size;
+// A count argument: an int in [0, PY_SSIZE_T_MAX] (TypeError/ValueError naming it).
+py::ssize_t count_arg(const py::handle& value, const char* name) {
+  return static_cast<py::ssize_t>(int_arg(value, name, 0, std::numeric_limits<py::ssize_t>::max()));
 }
 
+// `size` draws filled in chunks of 2^20 (a multiple of the normal sampler's 256-value block, so
+// the draws equal one fill's), with Ctrl-C polled between chunks and the Rng's guard held.
 template <typename T, typename Fill>
-py::array_t<T> draw(core::Rng& rng, py::ssize_t size, Fill fill) {
-  py::array_t<T> out(checked_size(size, "size"));
-  {
-    py::gil_scoped_release release;
-    fill(rng, out.mutable_data(), static_cast<std::size_t>(size));
+py::array_t<T> draw(core::Rng& rng, const py::handle& size_arg, Fill fill) {
+  ObjectGuard guard(&rng);
+  const auto size = static_cast<std::size_t>(count_arg(size_arg, "size"));
+  check_allocation(static_cast<double>(size) * sizeof(T), "size = " + std::to_string(size) + " draws");
+  py::array_t<T> out(static_cast<py::ssize_t>(size));
+  PythonInterrupts interrupts;
+  py::gil_scoped_release release;
+  constexpr std::size_t kChunk = std::size_t{1} << 20;
+  for (std::size_t done = 0; done < size; done += kChunk) {
+    core::poll_interrupt();
+    fill(rng, out.mutable_data() + done, std::min(kChunk, size - done));
   }
   return out;
 }
@@ -34,10 +47,19 @@ Seeded random engine (xoshiro256**). The same seed and stream give the same draw
 and platform. `stream` selects one of 2^128 non-overlapping sub-sequences of the seed, for
 independent generators (one per thread or per tracker) from one seed.
 )doc")
-      .def(py::init<std::uint64_t, std::uint64_t>(), py::arg("seed") = 0, py::arg("stream") = 0)
+      .def(py::init([](const py::handle& seed, const py::handle& stream) {
+             const auto as_u64 = [](const py::handle& v, const char* name) {
+               return std::get<std::uint64_t>(parameter_from_python(name, core::ParameterKind::seed, 0, v));
+             };
+             const std::uint64_t s = as_u64(seed, "seed"), k = as_u64(stream, "stream");
+             PythonInterrupts interrupts;  // O(stream) jumps
+             py::gil_scoped_release release;
+             return core::Rng(s, k);
+           }),
+           py::arg("seed") = 0, py::arg("stream") = 0)
       .def(
           "uniform",
-          [](core::Rng& rng, py::ssize_t size) {
+          [](core::Rng& rng, const py::handle& size) {
             return draw<double>(rng, size, [](core::Rng& r, double* p, std::size_t n) {
               r.fill_uniform(p, n);
             });
@@ -45,14 +67,14 @@ independent generators (one per thread or per tracker) from one seed.
           py::arg("size"), "`size` draws uniform on [0, 1) as float64.")
       .def(
           "normal",
-          [](core::Rng& rng, py::ssize_t size) {
+          [](core::Rng& rng, const py::handle& size) {
             return draw<double>(rng, size, [](core::Rng& r, double* p, std::size_t n) {
               r.fill_normal(p, n);
             });
           },
           py::arg("size"), "`size` standard normal draws as float64.")
-      .def("next_uint64", &core::Rng::next, "The next raw 64-bit output.")
-      .def("jump", &core::Rng::jump, "Advance the state by 2^128 draws.");
+      .def("next_uint64", guarded(&core::Rng::next), "The next raw 64-bit output.")
+      .def("jump", guarded(&core::Rng::jump), "Advance the state by 2^128 draws.");
 
   m.def(
       "log_sum_exp",
@@ -92,17 +114,18 @@ independent generators (one per thread or per tracker) from one seed.
 
   m.def(
       "resample",
-      [](const py::handle& weights, const py::handle& rng, std::optional<py::ssize_t> count,
-         const std::string& method) {
+      [](const py::handle& weights, const py::handle& rng, const py::handle& count,
+         const py::handle& method) {
         auto a = as_vector(weights, "weights");
-        const auto scheme = core::parse_resampling_scheme(method);
-        const py::ssize_t m_count = count ? checked_size(*count, "count") : a.size();
-        core::Rng storage;
-        core::Rng& engine = rng_from(rng, storage);
+        const auto scheme = core::parse_resampling_scheme(str_arg(method, "method"));
+        const py::ssize_t m_count = count.is_none() ? a.size() : count_arg(count, "count");
+        check_allocation(static_cast<double>(m_count) * 8.0,
+                         "count = " + std::to_string(m_count) + " ancestors");
+        RngArg engine(rng);
         py::array_t<std::int64_t> ancestors(m_count);
         {
           py::gil_scoped_release release;
-          core::resample(scheme, vector_map(a), static_cast<std::size_t>(m_count), engine,
+          core::resample(scheme, vector_map(a), static_cast<std::size_t>(m_count), engine.get(),
                          ancestors.mutable_data());
         }
         return ancestors;
@@ -128,15 +151,20 @@ void bind_gaussian(py::module_& m) {
       .def_property_readonly("cholesky", &core::Gaussian::cholesky)
       .def(
           "sample",
-          [](const core::Gaussian& g, const py::handle& rng, std::optional<py::ssize_t> n)
+          [](const core::Gaussian& g, const py::handle& rng, const py::handle& n)
               -> py::object {
-            core::Rng storage;
-            core::Rng& engine = rng_from(rng, storage);
-            if (!n) return py::cast(Eigen::VectorXd(g.sample(engine)));
+            RngArg engine(rng);
+            if (n.is_none()) return py::cast(Eigen::VectorXd(g.sample(engine.get())));
+            const py::ssize_t count = count_arg(n, "n");
+            const std::string what = "n = " + std::to_string(count) + " samples of dimension " +
+                                     std::to_string(g.dim());
+            check_allocation(3.0 * static_cast<double>(count) * g.dim() * sizeof(double), what);
             Eigen::MatrixXd xs;
-            {
+            try {
               py::gil_scoped_release release;
-              xs = g.sample(engine, checked_size(*n, "n")).transpose();
+              xs = g.sample(engine.get(), count).transpose();
+            } catch (const std::bad_alloc&) {
+              throw_memory_error(what);
             }
             return py::cast(xs);
           },

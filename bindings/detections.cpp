@@ -9,12 +9,15 @@
 
 #include <pybind11/stl/filesystem.h>
 
+#include "args.hpp"
 #include "common.hpp"
+#include "guard.hpp"
 #include "params.hpp"
 #include "tracks.hpp"
 #include "vtrack/apps/mot_files.hpp"
 #include "vtrack/apps/hog_detector.hpp"
 #include "vtrack/apps/track_detections.hpp"
+#include "vtrack/core/limits.hpp"
 
 namespace vtrack::bindings {
 namespace {
@@ -37,7 +40,7 @@ std::vector<Detection> detections_from_rows(const py::handle& obj) {
   for (Eigen::Index i = 0; i < m.rows(); ++i) {
     const std::string where = "detections row " + std::to_string(i) + ": ";
     const double f = m(i, 0);
-    if (!(std::isfinite(f) && f == std::floor(f) && std::fabs(f) < 1e15)) {
+    if (!(std::isfinite(f) && f == std::floor(f) && std::fabs(f) <= core::kMaxFrame)) {
       throw py::value_error(where + "frame must be an integer, got " + py::repr(py::float_(f)).cast<std::string>());
     }
     Detection d{static_cast<long long>(f), m(i, 2), m(i, 3), m(i, 4), m(i, 5),
@@ -60,11 +63,14 @@ namespace {
 void bind_detection_files(py::module_& m) {
   m.def(
       "read_detections",
-      [](const std::filesystem::path& path, double min_confidence) {
+      [](const py::handle& path, const py::handle& min_confidence) {
+        const std::string file = path_arg(path, "path");
+        const double threshold = real_arg(min_confidence, "min_confidence");
         std::vector<Detection> d;
         {
+          PythonInterrupts interrupts;
           py::gil_scoped_release release;
-          d = apps::read_detections(path.string(), min_confidence);
+          d = apps::read_detections(file, threshold);
         }
         return detection_rows(d);
       },
@@ -77,14 +83,16 @@ or frame < 1. The same reader as `vtrack track --detections`.)doc");
 
   m.def(
       "track_detections",
-      [](const py::handle& detections, const py::handle& image_size, long long last_frame,
+      [](const py::handle& detections, const py::handle& image_size, const py::handle& last,
          const py::dict& params, const py::object& progress) {
         BoxTrackerParams p = params_from_kwargs<BoxTrackerParams>(params, "tracker");
+        const long long last_frame = int_arg(last, "last_frame", 0, core::kMaxFrame);
         std::vector<Detection> dets;
         if (is_path(detections)) {
-          const auto path = detections.cast<std::filesystem::path>();
+          const std::string path = path_arg(detections, "detections");
+          PythonInterrupts interrupts;
           py::gil_scoped_release release;
-          dets = apps::read_detections(path.string());
+          dets = apps::read_detections(path);
         } else {
           dets = detections_from_rows(detections);
         }
@@ -93,6 +101,7 @@ or frame < 1. The same reader as `vtrack track --detections`.)doc");
         const apps::FrameProgress report = progress_callback(progress);
         std::vector<apps::TrackRow> rows;
         {
+          PythonInterrupts interrupts;
           py::gil_scoped_release release;
           rows = apps::track_detections(dets, w, h, p, last_frame, report);
         }
@@ -108,7 +117,8 @@ void bind_box_tracker(py::module_& m) {
 Frame-by-frame GLMB tracker of image boxes (the tracker of track_detections): construct with
 image_size=(width, height) and keyword parameters (BoxTracker.default_params()); step() takes one
 frame's detections and returns its tracks as vtrack.Tracks. Deterministic with the default
-Murty ranking; step() releases the GIL.
+Murty ranking; step() releases the GIL (calls on one tracker from several threads are
+serialised) and Ctrl-C interrupts a long step.
 )doc");
   box.def(py::init([](const py::handle& image_size, const py::kwargs& kwargs) {
            const auto [w, h] = image_size_from(image_size);
@@ -130,6 +140,8 @@ Murty ranking; step() releases the GIL.
               apps::validate_detection(d, "boxes row " + std::to_string(i) + ": ");
               dets.push_back(d);
             }
+            ObjectGuard guard(&t);
+            PythonInterrupts interrupts;  // a large hypothesis budget makes a step long
             py::gil_scoped_release release;
             return TrackSet{t.step(dets)};
           },
@@ -137,8 +149,13 @@ Murty ranking; step() releases the GIL.
           "One frame: boxes (M, 4) [x, y, w, h] or (M, 5) with a score (M may be 0). Returns the "
           "tracks at this frame (vtrack.Tracks: ids 1, 2, ... in order of first report, scores = "
           "existence probabilities, states [cx, vcx, cy, vcy, w, h]).")
-      .def_property_readonly("frame", [](const apps::BoxTracker& t) { return t.tracker().time(); },
-                             "Number of frames processed.")
+      .def_property_readonly(
+          "frame",
+          [](const apps::BoxTracker& t) {
+            ObjectGuard guard(&t);
+            return t.tracker().time();
+          },
+          "Number of frames processed.")
       .def_property_readonly("image_size", [](const apps::BoxTracker& t) {
         return py::make_tuple(t.width(), t.height());
       })
@@ -184,6 +201,7 @@ min_score (drop grouped detections scoring less), person_fraction (returned box 
             const cv::Mat img = bgr_frame(frame, "frame", keep);
             std::vector<apps::ScoredBox> boxes;
             {
+              ObjectGuard guard(&d);  // OpenCV's HOG keeps scratch state
               py::gil_scoped_release release;
               boxes = d.detect(img);
             }
@@ -199,7 +217,7 @@ min_score (drop grouped detections scoring less), person_fraction (returned box 
           py::arg("frame"),
           "People in an H x W x 3 uint8 BGR frame: an (N, 5) float64 array [x, y, w, h, score], "
           "best score first. TypeError/ValueError naming `frame` for another dtype or shape. "
-          "Releases the GIL; use one detector per thread.");
+          "Releases the GIL; calls on one detector from several threads are serialised.");
   def_params<HogParams>(hog, [](const apps::HogPeopleDetector& d) { return d.params(); });
 }
 

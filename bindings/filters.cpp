@@ -1,7 +1,11 @@
 // Bindings of vtrack::assign (linear assignment, Murty) and vtrack::metrics (OSPA family).
 #include <vector>
 
+#include <limits>
+
+#include "args.hpp"
 #include "common.hpp"
+#include "guard.hpp"
 #include "vtrack/filters/assign.hpp"
 #include "vtrack/filters/metrics.hpp"
 
@@ -15,7 +19,9 @@ std::vector<Eigen::MatrixXd> tracks_from(const py::handle& obj, const char* name
   std::vector<Eigen::MatrixXd> tracks;
   tracks.reserve(static_cast<std::size_t>(a.shape(0)));
   for (py::ssize_t k = 0; k < a.shape(0); ++k) {
-    tracks.emplace_back(RowMatrixMap(a.data(k, 0, 0), steps, dim));
+    // Not a.data(k, 0, 0): its bounds check raises IndexError when T or d is 0 (a C-ordered
+    // array of such a shape is still valid, and the library names the problem).
+    tracks.emplace_back(RowMatrixMap(a.data() + k * steps * dim, steps, dim));
   }
   return tracks;
 }
@@ -55,10 +61,12 @@ non-numeric dtype.
 
   m.def(
       "murty",
-      [](const py::handle& cost, std::int64_t k) {
+      [](const py::handle& cost, const py::handle& k_arg) {
         auto c = as_matrix(cost, "cost");
+        const std::int64_t k = int_arg(k_arg, "k", 1, std::numeric_limits<std::int64_t>::max());
         assign::RankedAssignments r;
         {
+          PythonInterrupts interrupts;
           py::gil_scoped_release release;
           r = assign::murty(matrix_map(c), k);
         }
@@ -76,14 +84,16 @@ all assignments are distinct. Raises ValueError for NaN or -inf entries, n > m o
 
   m.def(
       "gibbs_assignments",
-      [](const py::handle& cost, std::int64_t sweeps, const py::handle& rng) {
+      [](const py::handle& cost, const py::handle& sweeps_arg, const py::handle& rng) {
         auto c = as_matrix(cost, "cost");
-        core::Rng storage;
-        core::Rng& engine = rng_from(rng, storage);
+        const std::int64_t sweeps =
+            int_arg(sweeps_arg, "sweeps", 1, std::numeric_limits<std::int64_t>::max());
+        RngArg engine(rng);
         assign::SampledAssignments s;
         {
+          PythonInterrupts interrupts;
           py::gil_scoped_release release;
-          s = assign::gibbs_assignments(matrix_map(c), sweeps, engine);
+          s = assign::gibbs_assignments(matrix_map(c), sweeps, engine.get());
         }
         return py::make_tuple(s.assignments, s.costs, s.visits);
       },
@@ -138,7 +148,8 @@ void bind_metrics(py::module_& m) {
 
   m.def(
       "ospa",
-      [](const py::handle& x, const py::handle& y, double c, double p) {
+      [](const py::handle& x, const py::handle& y, const py::handle& c_arg, const py::handle& p_arg) {
+        const double c = real_arg(c_arg, "c"), p = real_arg(p_arg, "p");
         auto a = as_matrix(x, "x");
         auto b = as_matrix(y, "y");
         py::gil_scoped_release release;
@@ -152,7 +163,9 @@ OspaResult (float() gives the distance): 0 for two empty sets, c when exactly on
 
   m.def(
       "gospa",
-      [](const py::handle& truth, const py::handle& estimates, double c, double p) {
+      [](const py::handle& truth, const py::handle& estimates, const py::handle& c_arg,
+         const py::handle& p_arg) {
+        const double c = real_arg(c_arg, "c"), p = real_arg(p_arg, "p");
         auto a = as_matrix(truth, "truth");
         auto b = as_matrix(estimates, "estimates");
         py::gil_scoped_release release;
@@ -166,7 +179,8 @@ each false estimate c^p / 2. Returns a GospaResult with the distance and its dec
 
   m.def(
       "ospa2",
-      [](const py::handle& x, const py::handle& y, double c, double p) {
+      [](const py::handle& x, const py::handle& y, const py::handle& c_arg, const py::handle& p_arg) {
+        const double c = real_arg(c_arg, "c"), p = real_arg(p_arg, "p");
         const auto tx = tracks_from(x, "x");
         const auto ty = tracks_from(y, "y");
         py::gil_scoped_release release;

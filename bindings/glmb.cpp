@@ -4,7 +4,9 @@
 #include <string>
 #include <vector>
 
+#include "args.hpp"
 #include "common.hpp"
+#include "guard.hpp"
 #include "params.hpp"
 #include "tracks.hpp"
 #include "vtrack/filters/glmb_tracker.hpp"
@@ -28,7 +30,7 @@ std::vector<GaussianBirth> births_from(const py::handle& obj) {
     const auto triple = item.cast<py::sequence>();
     auto mean = as_vector(triple[1], "births mean");
     auto cov = as_matrix(triple[2], "births cov");
-    births.push_back({triple[0].cast<double>(), {vector_map(mean), matrix_map(cov)}});
+    births.push_back({real_arg(triple[0], "births existence"), {vector_map(mean), matrix_map(cov)}});
   }
   return births;
 }
@@ -66,8 +68,9 @@ confirm_frames, lost_memory, relabel_overlap.
 step() returns vtrack.Tracks: ids 1, 2, ... in the order labels are first reported, scores =
 each label's posterior existence probability, states and covariances = the track densities'
 moments, labels = (birth time, birth index). Boxes are NaN (the state is the user's). The
-Gaussian filter with Murty's ranking is deterministic. step() releases the GIL; one tracker
-must not be stepped from two threads at once.
+Gaussian filter with Murty's ranking is deterministic. step() releases the GIL; calls on one
+tracker from several threads are serialised (each waits for the previous one), and Ctrl-C
+interrupts a long step.
 )doc");
   cls.def(py::init([](const models::LinearGaussianMotion& motion,
                       const models::LinearGaussianObservation& observation,
@@ -97,6 +100,8 @@ must not be stepped from two threads at once.
             py::array keep;
             cv::Mat image;
             if (!depth.is_none()) image = depth_image(depth, "depth", keep);
+            ObjectGuard guard(&t);
+            PythonInterrupts interrupts;  // a large hypothesis budget makes a step long
             py::gil_scoped_release release;
             // Row-major M x z_dim is column-major z_dim x M: one detection per column.
             const Eigen::Map<const Eigen::MatrixXd> columns(z.data(), z_dim, z.shape(0));
@@ -110,17 +115,22 @@ metres of the depth model's camera, 0 where there is no target or no reading; tr
 undetected are then scored by it (the switching model). Without it a step is detection-only.
 Raises TypeError for a non-numeric dtype and ValueError for a wrong shape or NaN/inf.
 )doc")
-      .def_property_readonly("tracks", [](const GlmbTracker& t) { return TrackSet{t.tracks()}; },
-                             "The tracks reported by the last step.")
-      .def("cardinality_distribution", &GlmbTracker::cardinality_distribution,
+      .def_property_readonly(
+          "tracks",
+          [](const GlmbTracker& t) {
+            ObjectGuard guard(&t);
+            return TrackSet{t.tracks()};
+          },
+          "The tracks reported by the last step.")
+      .def("cardinality_distribution", guarded(&GlmbTracker::cardinality_distribution),
            "P(n targets) for n = 0 .. the largest hypothesis size, a float64 array summing to 1.")
-      .def_property_readonly("map_cardinality", &GlmbTracker::map_cardinality,
+      .def_property_readonly("map_cardinality", guarded(&GlmbTracker::map_cardinality),
                              "The most probable number of targets.")
-      .def_property_readonly("hypothesis_count", &GlmbTracker::hypothesis_count,
+      .def_property_readonly("hypothesis_count", guarded(&GlmbTracker::hypothesis_count),
                              "Number of hypotheses kept after the last step.")
-      .def_property_readonly("track_count", &GlmbTracker::track_count,
+      .def_property_readonly("track_count", guarded(&GlmbTracker::track_count),
                              "Number of distinct track histories the hypotheses share.")
-      .def_property_readonly("time", &GlmbTracker::time,
+      .def_property_readonly("time", guarded(&GlmbTracker::time),
                              "Number of scans processed (the current scan index).")
       .def_property_readonly("has_depth_model", &GlmbTracker::has_depth_model,
                              "Whether step() accepts a depth image (the switching observation model).");

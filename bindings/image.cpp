@@ -2,12 +2,17 @@
 #include <string>
 #include <utility>
 
+#include <limits>
+
+#include "args.hpp"
 #include "common.hpp"
+#include "guard.hpp"
 #include "params.hpp"
 #include "vtrack/image/color.hpp"
 #include "vtrack/image/integral_image.hpp"
 #include "vtrack/image/kde_background.hpp"
 #include "vtrack/image/morphology.hpp"
+#include "vtrack/core/limits.hpp"
 
 namespace vtrack::bindings {
 namespace {
@@ -17,6 +22,48 @@ std::pair<py::array_t<float>, cv::Mat> new_float_image(int rows, int cols) {
   py::array_t<float> out({rows, cols});
   cv::Mat mat(rows, cols, CV_32FC1, out.mutable_data());
   return {std::move(out), mat};
+}
+
+// A rectangle's x, y, width, height: ints within int32 (Rect's fields), named in errors.
+image::Rect rect_arg(const py::handle& x, const py::handle& y, const py::handle& width,
+                     const py::handle& height) {
+  constexpr std::int64_t lo = std::numeric_limits<int>::min(), hi = std::numeric_limits<int>::max();
+  return {static_cast<int>(int_arg(x, "x", lo, hi)), static_cast<int>(int_arg(y, "y", lo, hi)),
+          static_cast<int>(int_arg(width, "width", lo, hi)),
+          static_cast<int>(int_arg(height, "height", lo, hi))};
+}
+
+// (n, 4) rectangles of an integer dtype, each value within int32 (checked before narrowing: a
+// rectangle at x = 2^32 must not wrap into the image). TypeError for a float or other dtype.
+py::array_t<std::int64_t> rects_arg(const py::handle& rects) {
+  py::array a = py::array::ensure(rects);
+  if (!a) throw py::type_error("rects must be an (n, 4) integer array, got " + type_name(rects));
+  if (a.ndim() != 2 || a.shape(1) != 4) {
+    throw py::value_error("rects must be an (n, 4) integer array of x, y, width, height");
+  }
+  const char kind = a.dtype().kind();
+  if (a.size() > 0 && kind != 'i' && kind != 'u') {
+    throw py::type_error("rects must hold integers (x, y, width, height), got dtype " +
+                         py::str(a.dtype()).cast<std::string>());
+  }
+  if (kind == 'u' && a.itemsize() == 8) {  // uint64 above INT64_MAX would wrap in the cast below
+    const auto u = py::array_t<std::uint64_t, py::array::c_style | py::array::forcecast>::ensure(a);
+    for (py::ssize_t i = 0; i < u.size(); ++i) {
+      if (u.data()[i] > static_cast<std::uint64_t>(std::numeric_limits<int>::max())) {
+        throw py::value_error("rects[" + std::to_string(i / 4) + "] holds " +
+                              std::to_string(u.data()[i]) + ", outside int32");
+      }
+    }
+  }
+  auto r = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(a);
+  for (py::ssize_t i = 0; i < r.size(); ++i) {
+    const std::int64_t v = r.data()[i];
+    if (v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max()) {
+      throw py::value_error("rects[" + std::to_string(i / 4) + "] holds " + std::to_string(v) +
+                            ", outside int32");
+    }
+  }
+  return r;
 }
 
 void bind_kde_background(py::module_& m) {
@@ -49,6 +96,7 @@ eq. 10 as printed). Not safe to share one model between threads.
             py::array keep;
             const cv::Mat bgr = bgr_frame(frame, "frame", keep);
             auto [out, y] = new_float_image(bgr.rows, bgr.cols);
+            ObjectGuard guard(&model);
             {
               py::gil_scoped_release release;
               model.apply(bgr, y);
@@ -57,17 +105,17 @@ eq. 10 as printed). Not safe to share one model between threads.
           },
           py::arg("frame"),
           "Consume the next H x W x 3 uint8 BGR frame; return y (H x W float32, 1 = background).")
-      .def("set_closing", &KdeBackground::set_closing, py::arg("size"),
+      .def("set_closing", guarded(&KdeBackground::set_closing), py::arg("size"),
            "Change the closing's side (0, 1 or odd) from the next frame on; track_video's mb "
            "pipeline sets it to MultiBernoulliTracker.closing_pixels after every frame.")
-      .def("freeze", &KdeBackground::freeze, "Stop storing samples (the model stays fixed).")
-      .def("resume", &KdeBackground::resume, "Store samples again on the K0 schedule.")
-      .def("reset", &KdeBackground::reset,
+      .def("freeze", guarded(&KdeBackground::freeze), "Stop storing samples (the model stays fixed).")
+      .def("resume", guarded(&KdeBackground::resume), "Store samples again on the K0 schedule.")
+      .def("reset", guarded(&KdeBackground::reset),
            "Forget all samples and the frame size; the next frame is frame 0.")
-      .def_property_readonly("learning", &KdeBackground::learning)
-      .def_property_readonly("frame_index", &KdeBackground::frame_index,
+      .def_property_readonly("learning", guarded(&KdeBackground::learning))
+      .def_property_readonly("frame_index", guarded(&KdeBackground::frame_index),
                              "Frames consumed since construction or reset().")
-      .def_property_readonly("sample_frames", &KdeBackground::sample_frames,
+      .def_property_readonly("sample_frames", guarded(&KdeBackground::sample_frames),
                              "Frame indices of the samples in the stack, oldest first.")
       .def("__repr__", [](const KdeBackground& b) {
         return "KdeBackground(" + keyword_text(params_dict(b.params())) + ")";
@@ -76,7 +124,8 @@ eq. 10 as printed). Not safe to share one model between threads.
 
   m.def(
       "foreground_mask",
-      [](const py::handle& y, double threshold) {
+      [](const py::handle& y, const py::handle& threshold_arg) {
+        const double threshold = real_arg(threshold_arg, "threshold");
         py::array keep;
         const cv::Mat image = gray_image(y, "y", keep);
         if (image.type() != CV_32FC1) {
@@ -92,7 +141,9 @@ eq. 10 as printed). Not safe to share one model between threads.
 
   m.def(
       "close_square",
-      [](const py::handle& y, int size, int threads) {
+      [](const py::handle& y, const py::handle& size_arg, const py::handle& threads_arg) {
+        const int size = static_cast<int>(int_arg(size_arg, "size", 0, core::kMaxImageSide));
+        const int threads = static_cast<int>(int_arg(threads_arg, "threads", 0, 1024));
         py::array keep;
         const cv::Mat image = gray_image(y, "image", keep);
         if (image.type() != CV_32FC1) throw py::type_error("image must have dtype float32");
@@ -146,30 +197,30 @@ empty or wholly outside sums to 0 over an area of 0.
       })
       .def(
           "sum",
-          [](const image::IntegralImage& ii, int x, int y, int width, int height) {
-            return ii.sum({x, y, width, height});
+          [](const image::IntegralImage& ii, const py::handle& x, const py::handle& y,
+             const py::handle& width, const py::handle& height) {
+            return ii.sum(rect_arg(x, y, width, height));
           },
           py::arg("x"), py::arg("y"), py::arg("width"), py::arg("height"))
       .def(
           "area",
-          [](const image::IntegralImage& ii, int x, int y, int width, int height) {
-            return ii.area({x, y, width, height});
+          [](const image::IntegralImage& ii, const py::handle& x, const py::handle& y,
+             const py::handle& width, const py::handle& height) {
+            return ii.area(rect_arg(x, y, width, height));
           },
           py::arg("x"), py::arg("y"), py::arg("width"), py::arg("height"))
       .def(
           "sums",
           [](const image::IntegralImage& ii, const py::handle& rects) {
-            auto r = py::array_t<int, py::array::c_style | py::array::forcecast>::ensure(rects);
-            if (!r || r.ndim() != 2 || r.shape(1) != 4) {
-              throw py::value_error("rects must be an (n, 4) integer array of x, y, width, height");
-            }
+            const auto r = rects_arg(rects);
             py::array_t<double> out(r.shape(0));
-            const int* p = r.data();
+            const std::int64_t* p = r.data();
             double* o = out.mutable_data();
             {
               py::gil_scoped_release release;
               for (py::ssize_t i = 0; i < r.shape(0); ++i) {
-                o[i] = ii.sum({p[4 * i], p[4 * i + 1], p[4 * i + 2], p[4 * i + 3]});
+                o[i] = ii.sum({static_cast<int>(p[4 * i]), static_cast<int>(p[4 * i + 1]),
+                               static_cast<int>(p[4 * i + 2]), static_cast<int>(p[4 * i + 3])});
               }
             }
             return out;

@@ -2,8 +2,10 @@
 #include <optional>
 #include <utility>
 
+#include "args.hpp"
 #include "common.hpp"
 #include "params.hpp"
+#include "vtrack/core/limits.hpp"
 #include "vtrack/models/depth_likelihood.hpp"
 #include "vtrack/models/linear_gaussian.hpp"
 
@@ -22,11 +24,19 @@ Linear-Gaussian motion model x_k = F x_{k-1} + v, v ~ N(0, Q), for Gaussian trac
       .def(py::init([](const py::handle& F, const py::handle& Q) {
              auto f = as_matrix(F, "F");
              auto q = as_matrix(Q, "Q");
-             return LinearGaussianMotion{matrix_map(f), matrix_map(q)};
+             LinearGaussianMotion motion{matrix_map(f), matrix_map(q)};
+             models::validate(motion);  // F finite, Q a covariance (never negative variances)
+             return motion;
            }),
            py::arg("F"), py::arg("Q"))
-      .def_static("constant_velocity", &LinearGaussianMotion::constant_velocity,
-                  py::arg("axes") = 2, py::arg("period") = 1.0, py::arg("sigma_v") = 5.0, R"doc(
+      .def_static(
+          "constant_velocity",
+          [](const py::handle& axes, const py::handle& period, const py::handle& sigma_v) {
+            return LinearGaussianMotion::constant_velocity(
+                static_cast<int>(int_arg(axes, "axes", 1, 1000)), real_arg(period, "period"),
+                real_arg(sigma_v, "sigma_v"));
+          },
+          py::arg("axes") = 2, py::arg("period") = 1.0, py::arg("sigma_v") = 5.0, R"doc(
 Constant velocity in `axes` dimensions (rgbd-glmb-switching-observation eq. 7): state
 [p_1, v_1, p_2, v_2, ...], F = I (x) [[1, T], [0, 1]], Q = sigma_v^2 (I (x) g g^T) with
 g = [T^2/2, T]. The defaults are the standard GLMB scenario's (2-D, T = 1, sigma_v = 5).
@@ -47,14 +57,19 @@ LinearGaussianObservation.position(...).
       .def(py::init([](const py::handle& H, const py::handle& R) {
              auto h = as_matrix(H, "H");
              auto r = as_matrix(R, "R");
-             return LinearGaussianObservation{matrix_map(h), matrix_map(r), Eigen::MatrixXd()};
+             LinearGaussianObservation observation{matrix_map(h), matrix_map(r), Eigen::MatrixXd()};
+             models::validate(observation);  // H finite, R positive definite
+             return observation;
            }),
            py::arg("H"), py::arg("R"))
       .def_static(
           "position",
-          [](int axes, const py::handle& R) {
+          [](const py::handle& axes, const py::handle& R) {
             auto r = as_matrix(R, "R");
-            return LinearGaussianObservation::position_of_constant_velocity(axes, matrix_map(r));
+            auto observation = LinearGaussianObservation::position_of_constant_velocity(
+                static_cast<int>(int_arg(axes, "axes", 1, 1000)), matrix_map(r));
+            models::validate(observation);
+            return observation;
           },
           py::arg("axes") = 2, py::arg("R") = Eigen::MatrixXd(Eigen::Matrix2d::Identity() * 100.0),
           R"doc(
@@ -103,11 +118,18 @@ treats every pixel as an independent observation; see models/depth_likelihood.hp
 fy defaults to fx, (cx, cy) to the image centre ((width - 1)/2, (height - 1)/2). Keyword
 parameters: DepthLikelihood.default_params().
 )doc");
-  depth.def(py::init([](int width, int height, double fx, std::optional<double> fy,
-                        std::optional<double> cx, std::optional<double> cy,
+  depth.def(py::init([](const py::handle& width, const py::handle& height, const py::handle& fx,
+                        const py::handle& fy, const py::handle& cx, const py::handle& cy,
                         const py::kwargs& kwargs) {
+             const auto optional_real = [](const py::handle& v, const char* name) {
+               return v.is_none() ? std::optional<double>() : std::optional<double>(real_arg(v, name));
+             };
              DepthLikelihoodParams p;
-             p.camera = models::PinholeCamera::of(width, height, fx, fy, cx, cy);
+             p.camera = models::PinholeCamera::of(
+                 static_cast<int>(int_arg(width, "width", 1, core::kMaxImageSide)),
+                 static_cast<int>(int_arg(height, "height", 1, core::kMaxImageSide)),
+                 real_arg(fx, "fx"), optional_real(fy, "fy"), optional_real(cx, "cx"),
+                 optional_real(cy, "cy"));
              return DepthLikelihood(params_from_kwargs(kwargs, "depth model", p));
            }),
            py::arg("width"), py::arg("height"), py::arg("fx"), py::arg("fy") = py::none(),

@@ -1,5 +1,6 @@
 // Bindings of vtrack::filters: the multi-Bernoulli track-before-detect tracker.
 #include "common.hpp"
+#include "guard.hpp"
 #include "params.hpp"
 #include "tracks.hpp"
 #include "vtrack/filters/multi_bernoulli.hpp"
@@ -55,6 +56,7 @@ the box calibration).
               throw py::type_error("y must have dtype float32, got " +
                                    py::str(keep.dtype()).cast<std::string>());
             }
+            ObjectGuard guard(&f);
             py::gil_scoped_release release;
             return TrackSet{f.step(img)};
           },
@@ -62,16 +64,21 @@ the box calibration).
           "Process one background-subtracted image y (H x W float32 in [0, 1], H and W as "
           "image_size) and return the reported tracks (vtrack.Tracks).")
       .def_property_readonly(
-          "tracks", [](const MultiBernoulliFilter& f) { return TrackSet{f.tracks()}; },
+          "tracks",
+          [](const MultiBernoulliFilter& f) {
+            ObjectGuard guard(&f);
+            return TrackSet{f.tracks()};
+          },
           "The tracks returned by the last step.")
       // Copies (returned by value): references into the filter would dangle after the next step.
       .def_property_readonly(
           "components",
           [](const MultiBernoulliFilter& f) {
+            ObjectGuard guard(&f);
             return std::vector<filters::BernoulliComponent>(f.components());
           },
           "Copies of all Bernoulli components after the last step (for debugging and plots).")
-      .def_property_readonly("frame", &MultiBernoulliFilter::frame, "Number of steps taken.")
+      .def_property_readonly("frame", guarded(&MultiBernoulliFilter::frame), "Number of steps taken.")
       .def_property_readonly(
           "closing_pixels", [](const MultiBernoulliFilter& f) { return f.likelihood().closing_pixels(); },
           "The side of the closing the tracker applies to y (pixels; 0 or 1: none): closing_size, "

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "vtrack/core/errors.hpp"
+#include "vtrack/core/limits.hpp"
 
 namespace vtrack::bindings {
 namespace {
@@ -117,8 +118,9 @@ std::pair<int, int> image_size_from(const py::handle& obj) {
     if (!is_integer(s[i])) wrong_type(name, "an int", s[i]);
     const py::int_ v = py::reinterpret_borrow<py::object>(s[i]);
     // OpenCV's image dimensions are ints; a side beyond 2^20 px is no camera's.
-    if (v < py::int_(1) || v > py::int_(1 << 20)) {
-      throw py::value_error(std::string(name) + " must be in [1, 1048576], got " +
+    if (v < py::int_(1) || v > py::int_(core::kMaxImageSide)) {
+      throw py::value_error(std::string(name) + " must be in [1, " +
+                            std::to_string(core::kMaxImageSide) + "], got " +
                             py::str(v).cast<std::string>());
     }
     size[i] = v.cast<int>();

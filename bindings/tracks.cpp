@@ -4,9 +4,11 @@
 
 #include <pybind11/stl/filesystem.h>
 
+#include "args.hpp"
 #include "common.hpp"
 #include "tracks.hpp"
 #include "vtrack/apps/mot_files.hpp"
+#include "vtrack/core/limits.hpp"
 
 namespace vtrack::bindings {
 namespace {
@@ -139,11 +141,9 @@ vtrack.io.mot_rows(frame, tracks) turns them into MOTChallenge rows.
 void bind_mot_files(py::module_& m) {
   m.def(
       "mot_rows",
-      [](long long frame, const TrackSet& tracks) {
-        if (frame < 1) {
-          throw py::value_error("frame must be >= 1 (MOTChallenge frames are 1-based), got " +
-                                std::to_string(frame));
-        }
+      [](const py::handle& frame_arg, const TrackSet& tracks) {
+        // MOTChallenge frames are 1-based.
+        const long long frame = int_arg(frame_arg, "frame (1-based)", 1, core::kMaxFrame);
         std::vector<apps::TrackRow> rows;
         apps::append_rows(rows, frame, tracks.tracks);
         return rows_array(rows);
@@ -154,7 +154,8 @@ void bind_mot_files(py::module_& m) {
 
   m.def(
       "write_mot",
-      [](const std::filesystem::path& path, const py::handle& rows) {
+      [](const py::handle& path_obj, const py::handle& rows) {
+        const std::string path = path_arg(path_obj, "path");
         const py::array any = py::array::ensure(rows);
         auto a = any && any.size() == 0 ? py::array_t<double>(std::vector<py::ssize_t>{0, 10})
                                         : as_matrix(rows, "rows", Nan::Rejected);
@@ -166,17 +167,25 @@ void bind_mot_files(py::module_& m) {
         std::vector<apps::TrackRow> out;
         for (Eigen::Index i = 0; i < m.rows(); ++i) {
           if (!m.row(i).allFinite()) throw py::value_error("rows contain NaN or infinite values");
-          if (m(i, 0) < 1 || m(i, 0) != std::floor(m(i, 0)) || m(i, 1) < 0 ||
-              m(i, 1) != std::floor(m(i, 1))) {
+          // Range-checked before the casts below (a double beyond the integer's range is UB).
+          if (m(i, 0) < 1 || m(i, 0) != std::floor(m(i, 0)) || m(i, 0) > core::kMaxFrame ||
+              m(i, 1) < 0 || m(i, 1) != std::floor(m(i, 1)) || m(i, 1) > 9007199254740992.0) {
             throw py::value_error("rows row " + std::to_string(i) +
-                                  ": frame must be an integer >= 1 and id an integer >= 0");
+                                  ": frame must be an integer in [1, 10^15] and id an integer in "
+                                  "[0, 2^53]");
+          }
+          for (int c = 2; c < 6; ++c) {
+            if (std::fabs(m(i, c)) > core::kMaxCoordinate) {
+              throw py::value_error("rows row " + std::to_string(i) + ": x, y, w and h must be "
+                                    "within +-1e9 pixels, got " + std::to_string(m(i, c)));
+            }
           }
           out.push_back({static_cast<long long>(m(i, 0)), static_cast<std::uint64_t>(m(i, 1)),
                          static_cast<float>(m(i, 2)), static_cast<float>(m(i, 3)),
                          static_cast<float>(m(i, 4)), static_cast<float>(m(i, 5)), m(i, 6)});
         }
         py::gil_scoped_release release;
-        apps::write_mot(path.string(), out);
+        apps::write_mot(path, out);
       },
       py::arg("path"), py::arg("rows"), R"doc(
 Write MOTChallenge track rows (N, 7..10: frame, id, x, y, w, h, conf[, ...]) to `path` as

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "args.hpp"
 #include "common.hpp"
 #include "params.hpp"
 #include "vtrack/models/camera.hpp"
@@ -194,7 +195,10 @@ raise vtrack.InvalidArgument naming the key. See read_camera_file for the file f
               [](const Camera& c, const auto& x) { return c.road_to_image_points(x); },
               "Road points (N, 2) world (X, Y), Z = 0 -> image pixels (N, 2) with distortion.");
 
-  m.def("read_camera_file", &models::read_camera_file, py::arg("path"), R"doc(
+  m.def(
+      "read_camera_file",
+      [](const py::handle& path) { return models::read_camera_file(path_arg(path, "path")); },
+      py::arg("path"), R"doc(
 Read a camera file (YAML or JSON): K (3x3), dist (OpenCV coefficients, [] or zeros for none),
 R (3x3), t (3) with x_cam = R X_world + t; optional road_axis_world (3, default [0, 1, 0]) and
 image_size ([width, height]); unknown keys are ignored. Matrices as lists of rows, flat
@@ -292,7 +296,9 @@ bus) as dicts {name, W, H, L, sigma_w, sigma_h, sigma_l, weight, heavy}; truck a
 )doc");
   m.def(
       "read_vehicle_models_file",
-      [](const std::string& path) { return models_to_list(models::read_vehicle_models_file(path)); },
+      [](const py::handle& path) {
+        return models_to_list(models::read_vehicle_models_file(path_arg(path, "path")));
+      },
       py::arg("path"), R"doc(
 Read vehicle models from a YAML/JSON file with a list `models` of
 {name, W, H, L, sigma_w, sigma_h, sigma_l, weight (optional, 1), heavy (optional, false)}.

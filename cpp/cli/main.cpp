@@ -13,16 +13,22 @@
 #include <utility>
 #include <vector>
 
+#include <filesystem>
+#include <new>
+
 #include <unistd.h>
 
 #include "batch_handoff.hpp"
+#include "signals.hpp"
 #include "vtrack/apps/background_subtraction.hpp"
 #include "vtrack/apps/config.hpp"
 #include "vtrack/apps/mot_files.hpp"
+#include "vtrack/apps/output_paths.hpp"
 #include "vtrack/apps/pipeline.hpp"
 #include "vtrack/apps/track_detections.hpp"
 #include "vtrack/apps/video_source.hpp"
 #include "vtrack/core/errors.hpp"
+#include "vtrack/core/limits.hpp"
 #include "vtrack/version.hpp"
 
 namespace {
@@ -91,6 +97,7 @@ class ProgressLine {
 
   std::function<void(long long, long long)> callback() {
     return [this](long long done, long long total) {
+      vtrack::cli::check_signals();
       if (done % 25 != 0 && done != total) return;
       const double seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
@@ -144,6 +151,30 @@ void as_usage(const Assemble& assemble) {
   }
 }
 
+// Outputs checked before any work (apps/output_paths.hpp): one that is an input or another
+// output is a usage error (exit 2); a folder that does not exist or is not writable exit 1.
+void check_outputs(const std::vector<vtrack::apps::NamedPath>& inputs,
+                   const std::vector<vtrack::apps::NamedPath>& outputs) {
+  std::vector<vtrack::apps::NamedPath> given;
+  for (const auto& o : outputs) {
+    if (!o.path.empty()) given.push_back(o);
+  }
+  as_usage([&] { vtrack::apps::check_outputs(inputs, given); });
+}
+
+// Removes the outputs a failed run has already completed, so that it leaves none behind.
+struct CompletedOutputs {
+  std::vector<std::string> paths;
+  bool keep = false;
+  ~CompletedOutputs() {
+    if (keep) return;
+    for (const auto& p : paths) {
+      std::error_code ec;
+      std::filesystem::remove(p, ec);
+    }
+  }
+};
+
 std::uint64_t parse_seed(const std::string& text) {
   std::uint64_t seed = 0;
   as_usage([&] { seed = vtrack::core::seed_value("--seed", vtrack::core::parse_parameter_text(text)); });
@@ -166,6 +197,8 @@ int run_bgs(const std::vector<std::string>& args) {
   });
   if (input.empty()) throw UsageError("bgs needs a VIDEO (or image folder)");
   if (output.empty()) throw UsageError("bgs needs --out OUT (a folder, or a .avi/.mp4/.mkv file)");
+  check_outputs({{"VIDEO", input}, {"--config", config}},
+                {{"--out", output, !vtrack::apps::is_video_output(output)}});
   vtrack::image::KdeBackgroundParams params;
   if (!config.empty()) {
     const auto file = vtrack::apps::read_config(config);
@@ -207,7 +240,10 @@ std::pair<int, int> parse_image_size(const std::string& text) {
   if (x == std::string::npos) throw UsageError("--image-size expects WxH, got '" + text + "'");
   const int w = parse_int("--image-size", text.substr(0, x));
   const int h = parse_int("--image-size", text.substr(x + 1));
-  if (w <= 0 || h <= 0) throw UsageError("--image-size must be positive, got '" + text + "'");
+  as_usage([&] {
+    vtrack::core::require_image_side(w, "--image-size width");
+    vtrack::core::require_image_side(h, "--image-size height");
+  });
   return {w, h};
 }
 
@@ -246,18 +282,25 @@ vtrack::apps::PipelineParams track_params(const TrackOptions& o) {
   vtrack::apps::PipelineParams params;
   params.method = o.method;
   params.detector = o.detector;
-  if (!o.config.empty()) vtrack::apps::apply_config(params, vtrack::apps::read_config(o.config));
+  const auto validate = [&] {
+    if (o.method == "glmb" && o.detector.empty()) {
+      vtrack::apps::validate(params.box);  // the boxes come from a file
+    } else {
+      vtrack::apps::validate(params);
+    }
+  };
+  if (!o.config.empty()) {
+    // A value out of range in the file is bad data (exit 1), in --set/--seed a usage error (2).
+    vtrack::apps::apply_config(params, vtrack::apps::read_config(o.config));
+    if (o.settings.empty() && !o.seed) validate();
+  }
   as_usage([&] {
     if (o.seed) vtrack::apps::set_pipeline_parameter(params, "seed", *o.seed);
     for (const auto& setting : o.settings) {
       const auto [name, value] = vtrack::core::parse_setting(setting);
       vtrack::apps::set_pipeline_parameter(params, name, value);
     }
-    if (o.method == "glmb" && o.detector.empty()) {
-      vtrack::apps::validate(params.box);  // the boxes come from a file
-    } else {
-      vtrack::apps::validate(params);
-    }
+    validate();
   });
   return params;
 }
@@ -280,11 +323,12 @@ bool parameter_option(TrackOptions& o, const std::string& a, const std::string& 
   return true;
 }
 
+// The library's message for an unknown method ("method must be one of mb, glmb, got 'x'"), as
+// Python gives it, as a usage error.
 void check_method(const TrackOptions& o) {
-  const auto& methods = vtrack::apps::pipeline_methods();
-  if (std::find(methods.begin(), methods.end(), o.method) == methods.end()) {
-    throw UsageError("--method must be 'mb' or 'glmb' (got '" + o.method + "')");
-  }
+  vtrack::apps::PipelineParams params;
+  params.method = o.method;
+  as_usage([&] { vtrack::apps::pipeline_sections(params); });
 }
 
 // A parameter value as JSON.
@@ -358,6 +402,8 @@ int run_track(const std::vector<std::string>& args) {
     throw UsageError("--render must name a .avi, .mp4 or .mkv file, got '" + o.render + "'");
   }
   check_track_options(o);
+  check_outputs({{"VIDEO", o.input}, {"--detections", o.detections}, {"--config", o.config}},
+                {{"--out", o.output}, {"--render", o.render}, {"--save-detections", o.save_detections}});
   const auto params = track_params(o);
   ProgressLine progress("track");
   vtrack::apps::PipelineResult result;
@@ -371,11 +417,16 @@ int run_track(const std::vector<std::string>& args) {
     result = vtrack::apps::track_video(o.input, params, o.render, progress.callback());
   }
   progress.finish();
-  // Written only once everything is tracked, so a failure leaves no tracks file.
+  // Written only once everything is tracked, so a failure leaves no tracks file; should one of
+  // the last writes fail, the outputs already completed (the render) are removed with it.
+  CompletedOutputs completed;
+  if (!o.render.empty()) completed.paths.push_back(o.render);
   vtrack::apps::write_mot(o.output, result.tracks);
+  completed.paths.push_back(o.output);
   if (!o.save_detections.empty()) {
     vtrack::apps::write_detections(o.save_detections, result.detections);
   }
+  completed.keep = true;
   std::cout << "wrote " << result.tracks.size() << " track rows to " << o.output;
   if (!o.render.empty()) std::cout << ", the annotated video to " << o.render;
   if (!o.save_detections.empty()) std::cout << ", the detections to " << o.save_detections;
@@ -462,6 +513,8 @@ void print_help() {
 
 int main(int argc, char** argv) {
   vtrack::apps::quiet_video_backend_logs();  // our error messages say what went wrong
+  vtrack::cli::install_signal_handlers();
+  const vtrack::core::InterruptScope interrupts(vtrack::cli::check_signals);
   std::vector<std::string> args(argv + 1, argv + argc);
   try {
     if (args.empty()) throw UsageError("no command given (try 'vtrack --help')");
@@ -487,6 +540,13 @@ int main(int argc, char** argv) {
   } catch (const UsageError& e) {
     std::cerr << "vtrack: error: " << e.what() << "\n";
     return kExitUsage;
+  } catch (const vtrack::cli::Interrupted& e) {
+    std::cerr << "\nvtrack: interrupted\n";
+    return 128 + e.signal;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "vtrack: error: out of memory (a size, count or budget is larger than this "
+                 "machine's memory allows)\n";
+    return kExitFailure;
   } catch (const std::exception& e) {
     std::cerr << "vtrack: error: " << e.what() << "\n";
     return kExitFailure;

@@ -292,7 +292,7 @@ def run_input(path: str, folder: str, job: Dict[str, Any], gt_path: Optional[str
     input. Returns the outcome that the client writes to run.json."""
     import vtrack  # noqa: PLC0415
 
-    from .io import write_mot  # noqa: PLC0415 - the C++ writer (atomic: .partial, renamed)
+    from .io import read_mot, write_mot  # noqa: PLC0415 - the C++ writer (atomic: .partial, renamed)
 
     out = Path(folder)
     out.mkdir(parents=True, exist_ok=True)
@@ -317,7 +317,8 @@ def run_input(path: str, folder: str, job: Dict[str, Any], gt_path: Optional[str
     finally:
         if render is not None:
             Path(render).unlink(missing_ok=True)
-    metrics, gt_error = _metrics(rows, gt_path)
+    # The metrics of the rows as written (two-decimal boxes), as a re-run's recomputation sees them.
+    metrics, gt_error = _metrics(read_mot(out / TRACKS), gt_path) if gt_path else (None, None)
     return {"status": "ok", "error": gt_error, "frames": int(frames), "seconds": seconds,
             "metrics": metrics, **where}
 

@@ -44,7 +44,9 @@ def read_mot(path: PathLike) -> np.ndarray:
     """
     path = Path(path)
     rows = []
-    with open(path) as f:
+    # Bytes that are not UTF-8 stay readable (as surrogates) so that the row that holds them is
+    # reported with its file and line instead of a bare UnicodeDecodeError.
+    with open(path, encoding="utf-8", errors="surrogateescape") as f:
         for number, line in enumerate(f, start=1):
             line = line.strip()
             if not line:

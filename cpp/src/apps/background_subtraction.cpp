@@ -6,9 +6,12 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include "vtrack/apps/output_paths.hpp"
+#include "vtrack/apps/temporary_files.hpp"
 #include "vtrack/apps/video_source.hpp"
 #include "vtrack/apps/video_writer.hpp"
 #include "vtrack/core/errors.hpp"
+#include "vtrack/core/interrupt.hpp"
 
 namespace vtrack::apps {
 namespace fs = std::filesystem;
@@ -38,7 +41,16 @@ class FolderWriter : public YWriter {
     char name[32];
     std::snprintf(name, sizeof name, "%06lld", index);
     const fs::path partial = folder_ / (std::string(name) + ".partial.png");
-    if (!cv::imwrite(partial.string(), y8)) {
+    TemporaryFile registered(partial.string());
+    bool written = false;
+    try {
+      written = cv::imwrite(partial.string(), y8);
+    } catch (const cv::Exception&) {
+      written = false;
+    }
+    if (!written) {
+      std::error_code ec;
+      fs::remove(partial, ec);  // a half-written image is not left behind
       throw IoError("cannot write frame " + std::to_string(index) + " to '" + partial.string() + "'");
     }
     rename_or_throw(partial, folder_ / (std::string(name) + ".png"));
@@ -74,9 +86,11 @@ BgsResult run_background_subtraction(const std::string& input, const std::string
                                      const image::KdeBackgroundParams& params,
                                      const FrameProgress& progress) {
   image::KdeBackground model(params);  // validates params before any file is touched
+  const bool video = is_video_output(output);
+  check_outputs({{"input", input}}, {{"output", output, !video}});
   VideoSource source(input);
   BgsResult result;
-  result.video = is_video_output(output);
+  result.video = video;
   std::unique_ptr<YWriter> writer;
   if (result.video) {
     const double fps = source.fps() > 0 ? source.fps() : 25.0;
@@ -86,6 +100,7 @@ BgsResult run_background_subtraction(const std::string& input, const std::string
   }
   cv::Mat frame, y, y8;
   while (true) {
+    core::poll_interrupt();
     try {
       if (!source.read(frame)) break;
     } catch (const IoError& e) {

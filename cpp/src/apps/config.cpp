@@ -1,13 +1,13 @@
 #include "vtrack/apps/config.hpp"
 
-#include <filesystem>
-#include <fstream>
 #include <set>
-#include <sstream>
+#include <vector>
 
+#include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>
 
 #include "vtrack/core/errors.hpp"
+#include "vtrack/core/text_file.hpp"
 
 namespace vtrack::apps {
 namespace {
@@ -16,22 +16,13 @@ std::string at(const std::string& path, const YAML::Node& node) {
   return path + ": line " + std::to_string(node.Mark().line + 1) + ": ";
 }
 
-// The deepest nesting of [ ] and { } outside quoted strings.
-int flow_nesting(const std::string& text) {
-  int depth = 0, deepest = 0;
-  char quote = 0;
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    if (quote) {
-      if (c == '\\' && quote == '"') ++i;
-      else if (c == quote) quote = 0;
-      continue;
-    }
-    if (c == '"' || c == '\'') quote = c;
-    else if (c == '[' || c == '{') deepest = std::max(deepest, ++depth);
-    else if (c == ']' || c == '}') depth = std::max(0, depth - 1);
+// A map key: a name, never a list or map (whose Scalar() would silently be "").
+std::string key_of(const std::string& path, const YAML::Node& key) {
+  if (!key.IsScalar()) {
+    throw InvalidArgument(at(path, key) + "a section or parameter name must be a plain name, "
+                          "not a list or map");
   }
-  return deepest;
+  return key.Scalar();
 }
 
 core::ParameterValue scalar_value(const std::string& where, const std::string& name,
@@ -77,26 +68,18 @@ std::uint64_t seed_from(const std::string& where, const YAML::Node& node) {
 }
 
 YAML::Node load(const std::string& path) {
-  std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error)) {
-    throw IoError("no such config file: '" + path + "'");
-  }
-  const auto size = std::filesystem::file_size(path, error);
-  if (error || size > kMaxConfigBytes) {
-    throw IoError("config file '" + path + "' is larger than " + std::to_string(kMaxConfigBytes) +
-                  " bytes");
-  }
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  if (!in && !in.eof()) throw IoError("cannot read config file '" + path + "'");
-  const std::string text = buffer.str();
-  if (flow_nesting(text) > kMaxConfigNesting) {
-    throw IoError("cannot parse config file '" + path + "': nested deeper than " +
-                  std::to_string(kMaxConfigNesting) + " levels");
-  }
+  const std::string text =
+      core::read_text_file(path, "config file", kMaxConfigBytes, kMaxConfigNesting);
   try {
-    return YAML::Load(text);
+    const std::vector<YAML::Node> documents = YAML::LoadAll(text);
+    if (documents.size() > 1) {
+      throw IoError("cannot parse config file '" + path + "': it holds " +
+                    std::to_string(documents.size()) + " YAML documents (---), one is read");
+    }
+    return documents.empty() ? YAML::Node() : documents.front();
+  } catch (const YAML::DeepRecursion& e) {
+    throw IoError("cannot parse config file '" + path + "': line " +
+                  std::to_string(e.mark.line + 1) + ": nested too deeply");
   } catch (const YAML::Exception& e) {
     throw IoError("cannot parse config file '" + path + "': line " +
                   std::to_string(e.mark.line + 1) + ", column " +
@@ -124,7 +107,7 @@ Config read_config(const std::string& path) {
   }
   std::set<std::string> seen;
   for (const auto& item : root) {
-    const std::string key = item.first.Scalar();
+    const std::string key = key_of(path, item.first);
     if (!seen.insert(key).second) {
       throw InvalidArgument(at(path, item.first) + "'" + key + "' appears twice");
     }
@@ -139,7 +122,7 @@ Config read_config(const std::string& path) {
     ParameterValues values;
     std::set<std::string> names;
     for (const auto& parameter : item.second) {
-      const std::string name = parameter.first.Scalar();
+      const std::string name = key_of(path, parameter.first);
       if (!names.insert(name).second) {
         throw InvalidArgument(at(path, parameter.first) + "parameter '" + name +
                               "' appears twice in section '" + key + "'");

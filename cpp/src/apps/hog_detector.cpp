@@ -59,10 +59,38 @@ HogPeopleDetector::HogPeopleDetector(HogParams params) : params_(params) {
   hog_.setSVMDetector(cv::HOGDescriptor::getDefaultPeopleDetector());
 }
 
+namespace {
+
+// The side cv::resize gives a side of `n` pixels at `factor` (it rounds to nearest).
+int resized(int n, double factor) { return cvRound(n * factor); }
+
+}  // namespace
+
+cv::Size HogPeopleDetector::min_frame_size() const {
+  const cv::Size window = hog_.winSize;
+  cv::Size min(static_cast<int>(window.width / params_.upscale),
+               static_cast<int>(window.height / params_.upscale));
+  while (resized(min.width, params_.upscale) < window.width) ++min.width;
+  while (resized(min.height, params_.upscale) < window.height) ++min.height;
+  return min;
+}
+
+void HogPeopleDetector::check_frame_size(int width, int height) const {
+  const cv::Size min = min_frame_size();
+  if (width >= min.width && height >= min.height) return;
+  throw InvalidArgument("frame is " + std::to_string(width) + "x" + std::to_string(height) +
+                        ", smaller than the HOG people detector's " +
+                        std::to_string(hog_.winSize.width) + "x" +
+                        std::to_string(hog_.winSize.height) + " window at upscale " +
+                        value_text(params_.upscale) + ": frames must be at least " +
+                        std::to_string(min.width) + "x" + std::to_string(min.height));
+}
+
 std::vector<ScoredBox> HogPeopleDetector::detect(const cv::Mat& frame) const {
   if (frame.empty() || frame.depth() != CV_8U || (frame.channels() != 3 && frame.channels() != 1)) {
     throw InvalidArgument("frame must be a non-empty 8-bit BGR or grey image");
   }
+  check_frame_size(frame.cols, frame.rows);
   cv::Mat image = frame;
   if (params_.upscale != 1.0) {
     cv::resize(frame, image, cv::Size(), params_.upscale, params_.upscale, cv::INTER_LINEAR);

@@ -7,8 +7,11 @@
 #include <filesystem>
 #include <fstream>
 
+#include "vtrack/apps/temporary_files.hpp"
 #include "vtrack/apps/video_writer.hpp"
 #include "vtrack/core/errors.hpp"
+#include "vtrack/core/interrupt.hpp"
+#include "vtrack/core/limits.hpp"
 
 namespace vtrack::apps {
 namespace {
@@ -34,6 +37,14 @@ double parse_field(const std::string& field, const char* name, const std::string
   return v;
 }
 
+// A formatted row must fit its buffer whole: a cut row would silently merge with the next.
+void check_line(int written, std::size_t size, long long frame) {
+  if (written < 0 || static_cast<std::size_t>(written) >= size) {
+    throw InvalidArgument("the row of frame " + std::to_string(frame) +
+                          " has values too large to write as MOTChallenge text");
+  }
+}
+
 }  // namespace
 
 void validate_detection(const Detection& d, const std::string& where) {
@@ -48,11 +59,27 @@ void validate_detection(const Detection& d, const std::string& where) {
   }
   if (!(d.w > 0)) throw InvalidArgument(where + "w must be > 0, got " + value_text(d.w));
   if (!(d.h > 0)) throw InvalidArgument(where + "h must be > 0, got " + value_text(d.h));
+  for (const auto& [name, v] : fields) {
+    if (std::string(name) != "conf" && std::fabs(v) > core::kMaxCoordinate) {
+      throw InvalidArgument(where + name + " must be within +-" + value_text(core::kMaxCoordinate) +
+                            " pixels, got " + value_text(v));
+    }
+  }
+  if (d.frame > core::kMaxFrame) {
+    throw InvalidArgument(where + "frame must be <= " + std::to_string(core::kMaxFrame) + ", got " +
+                          std::to_string(d.frame));
+  }
 }
 
 std::vector<Detection> read_detections(const std::string& path, double min_confidence) {
-  if (!std::filesystem::is_regular_file(path)) {
-    throw IoError("no such detection file: '" + path + "'");
+  if (std::isnan(min_confidence)) {
+    throw InvalidArgument("min_confidence must be a number (-inf keeps every row), got nan");
+  }
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    throw IoError(std::filesystem::exists(path, ec)
+                      ? "detection file '" + path + "' is not a regular file"
+                      : "no such detection file: '" + path + "'");
   }
   std::ifstream in(path);
   if (!in) throw IoError("cannot read detection file '" + path + "'");
@@ -61,7 +88,7 @@ std::vector<Detection> read_detections(const std::string& path, double min_confi
   std::string line;
   long long number = 0;
   while (std::getline(in, line)) {
-    ++number;
+    if ((++number & 4095) == 0) core::poll_interrupt();  // files may hold millions of rows
     if (trimmed(line).empty()) continue;
     const std::string where = path + ":" + std::to_string(number) + ": ";
     std::vector<std::string> fields;
@@ -78,7 +105,8 @@ std::vector<Detection> read_detections(const std::string& path, double min_confi
     }
     double v[10];
     for (std::size_t i = 0; i < fields.size(); ++i) v[i] = parse_field(fields[i], names[i], where);
-    if (!(std::isfinite(v[0]) && v[0] == std::floor(v[0]) && std::fabs(v[0]) < 1e15)) {
+    if (!(std::isfinite(v[0]) && v[0] == std::floor(v[0]) &&
+          std::fabs(v[0]) <= static_cast<double>(core::kMaxFrame))) {
       throw InvalidArgument(where + "frame must be an integer, got '" + trimmed(fields[0]) + "'");
     }
     Detection d{static_cast<long long>(v[0]), v[2], v[3], v[4], v[5],
@@ -94,6 +122,7 @@ void write_text_atomically(const std::string& path,
                            const std::function<void(std::ostream&)>& write_lines) {
   const std::filesystem::path target(path);
   const std::filesystem::path partial = target.string() + ".partial";
+  TemporaryFile registered(partial.string());
   {
     std::ofstream out(partial);
     if (!out) throw IoError("cannot write '" + partial.string() + "'");
@@ -117,10 +146,11 @@ void write_text_atomically(const std::string& path,
 
 void write_detections(const std::string& path, const std::vector<Detection>& detections) {
   write_text_atomically(path, [&](std::ostream& out) {
-    char line[200];
+    char line[512];
     for (const auto& d : detections) {
-      std::snprintf(line, sizeof line, "%lld,-1,%.3f,%.3f,%.3f,%.3f,%.6g,-1,-1,-1\n", d.frame, d.x,
-                    d.y, d.w, d.h, d.confidence);
+      const int n = std::snprintf(line, sizeof line, "%lld,-1,%.3f,%.3f,%.3f,%.3f,%.6g,-1,-1,-1\n",
+                                  d.frame, d.x, d.y, d.w, d.h, d.confidence);
+      check_line(n, sizeof line, d.frame);
       out << line;
     }
   });
@@ -139,10 +169,12 @@ void append_rows(std::vector<TrackRow>& rows, long long frame, const filters::Tr
 
 void write_mot(const std::string& path, const std::vector<TrackRow>& rows) {
   write_text_atomically(path, [&](std::ostream& out) {
-    char line[160];
+    char line[512];
     for (const auto& r : rows) {
-      std::snprintf(line, sizeof line, "%lld,%llu,%.2f,%.2f,%.2f,%.2f,%.4f,-1,-1,-1\n", r.frame,
-                    static_cast<unsigned long long>(r.id), r.x, r.y, r.w, r.h, r.confidence);
+      const int n = std::snprintf(line, sizeof line, "%lld,%llu,%.2f,%.2f,%.2f,%.2f,%.4f,-1,-1,-1\n",
+                                  r.frame, static_cast<unsigned long long>(r.id), r.x, r.y, r.w,
+                                  r.h, r.confidence);
+      check_line(n, sizeof line, r.frame);
       out << line;
     }
   });

@@ -6,8 +6,10 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "vtrack/apps/output_paths.hpp"
 #include "vtrack/apps/video_writer.hpp"
 #include "vtrack/core/errors.hpp"
+#include "vtrack/core/interrupt.hpp"
 
 namespace vtrack::apps {
 namespace {
@@ -38,7 +40,9 @@ class MbFrameTracker : public FrameTracker {
 class GlmbFrameTracker : public FrameTracker {
  public:
   GlmbFrameTracker(const PipelineParams& p, int width, int height)
-      : detector_(p.hog), tracker_(width, height, p.box) {}
+      : detector_(p.hog), tracker_(width, height, p.box) {
+    detector_.check_frame_size(width, height);  // before any frame is read or output opened
+  }
   const filters::Tracks& step(const cv::Mat& frame) override {
     detections_.clear();
     for (const auto& b : detector_.detect(frame)) {
@@ -209,6 +213,7 @@ PipelineResult track_video(const std::string& input, const PipelineParams& param
   if (!render.empty() && !is_video_output(render)) {
     throw InvalidArgument("render must be a .avi, .mp4 or .mkv file, got '" + render + "'");
   }
+  if (!render.empty()) check_outputs({{"video", input}}, {{"render", render}});
   VideoSource source(input);
   const auto tracker = make_frame_tracker(params, source.width(), source.height());
   std::unique_ptr<AtomicVideoWriter> video;
@@ -219,6 +224,7 @@ PipelineResult track_video(const std::string& input, const PipelineParams& param
   PipelineResult result;
   cv::Mat frame;
   while (source.read(frame)) {
+    core::poll_interrupt();
     const long long frame_number = source.frames_read();  // 1-based, as MOTChallenge counts
     const filters::Tracks& tracks = tracker->step(frame);
     append_rows(result.tracks, frame_number, tracks);

@@ -6,6 +6,8 @@
 #include <memory>
 
 #include "vtrack/core/errors.hpp"
+#include "vtrack/core/interrupt.hpp"
+#include "vtrack/core/limits.hpp"
 
 namespace vtrack::apps {
 namespace {
@@ -79,7 +81,10 @@ void validate(const BoxTrackerParams& p) {
       {"detection_sd_size", p.detection_sd_size}, {"birth_sd_centre", p.birth_sd_centre},
       {"birth_sd_velocity", p.birth_sd_velocity}, {"birth_sd_size", p.birth_sd_size},
       {"birth_rate", p.birth_rate}};
-  for (const auto& [name, v] : positive) require(v > 0 && std::isfinite(v), name, v, "> 0 and finite");
+  // Squared into covariances: a square that overflows would reach the filter as an inf in Q or R.
+  for (const auto& [name, v] : positive) {
+    require(v > 0 && std::isfinite(v * v), name, v, "> 0 with a finite square");
+  }
   require(p.birth_max_existence > 0 && p.birth_max_existence < 1, "birth_max_existence",
           p.birth_max_existence, "in (0, 1)");
   validate(p.management);
@@ -106,7 +111,8 @@ void validate(const BoxTrackerParams& p) {
   require(p.max_births >= 0, "max_births", p.max_births, ">= 0");
   require(p.duplicate_rate >= 0 && std::isfinite(p.duplicate_rate), "duplicate_rate",
           p.duplicate_rate, ">= 0 and finite");
-  require(p.hypothesis_budget > 0, "hypothesis_budget", p.hypothesis_budget, "> 0");
+  require(p.hypothesis_budget > 0 && p.hypothesis_budget <= core::kMaxHypotheses,
+          "hypothesis_budget", p.hypothesis_budget, "in [1, 100000]");
   require(p.gate_threshold > 0, "gate_threshold", p.gate_threshold, "> 0 (or inf for no gating)");
   require(!std::isnan(p.min_confidence), "min_confidence", p.min_confidence, "a number");
 }
@@ -267,6 +273,14 @@ std::pair<int, int> detections_extent(const std::vector<Detection>& detections) 
     width = std::max(width, d.x + d.w);
     height = std::max(height, d.y + d.h);
   }
+  // Range-checked before narrowing to int (an image side beyond 2^20 px is no camera's).
+  for (const auto& [name, extent] : {std::pair{"x + w", width}, std::pair{"y + h", height}}) {
+    if (extent > core::kMaxImageSide) {
+      throw InvalidArgument(std::string("the detections reach ") + name + " = " +
+                            value_text(extent) + ", beyond the largest image side (" +
+                            std::to_string(core::kMaxImageSide) + " px): give the image size");
+    }
+  }
   return {static_cast<int>(std::ceil(width)), static_cast<int>(std::ceil(height))};
 }
 
@@ -275,7 +289,10 @@ std::vector<TrackRow> track_detections(const std::vector<Detection>& detections,
                                        long long last_frame, const FrameProgress& progress) {
   if (width == 0 || height == 0) std::tie(width, height) = detections_extent(detections);
   BoxTracker tracker(width, height, params);  // validates the parameters and the image size
-  if (last_frame < 0) throw InvalidArgument("last_frame must be >= 0, got " + std::to_string(last_frame));
+  if (last_frame < 0 || last_frame > core::kMaxFrame) {
+    throw InvalidArgument("last_frame must be in [0, " + std::to_string(core::kMaxFrame) + "], got " +
+                          std::to_string(last_frame));
+  }
   long long last = last_frame;
   for (std::size_t i = 0; i < detections.size(); ++i) {
     validate_detection(detections[i], "detection " + std::to_string(i) + ": ");
@@ -289,12 +306,39 @@ std::vector<TrackRow> track_detections(const std::vector<Detection>& detections,
   std::vector<TrackRow> rows;
   std::vector<Detection> frame_detections;
   auto next = sorted.begin();
+  // Idle: nothing tracked, remembered (lost-track memory) or about to be born (adaptive births
+  // come from the previous frame's detections). An empty frame then reports nothing and changes
+  // only the filter's step count and the online learners (clutter rate, p_D, score model), which
+  // decay geometrically towards their priors with memory `learning_memory`. So the loop steps
+  // through the first idle_steps = 20 memories of an idle run (the learners are then within
+  // e^-20 of where any longer run leaves them; every shorter gap gives exactly the rows of
+  // stepping every frame) and jumps to the next frame with detections: the cost depends on the
+  // number of detections and the memory, not on the frame numbers (a row at frame 10^14 or
+  // last_frame = 10^12 would otherwise step through every empty frame).
+  const long long idle_steps =
+      static_cast<long long>(std::min(20.0 * std::ceil(params.learning_memory), 1e6));
+  bool idle = true;
+  long long idle_run = 0;  // idle frames stepped since the last busy one
+  long long reported = 0;  // the last frame given to `progress`
   for (long long frame = 1; frame <= last; ++frame) {
+    if (idle && idle_run >= idle_steps) {
+      frame = next == sorted.end() ? last + 1 : next->frame;
+      if (frame > last) break;
+    }
     frame_detections.clear();
     for (; next != sorted.end() && next->frame == frame; ++next) frame_detections.push_back(*next);
-    append_rows(rows, frame, tracker.step(frame_detections));
-    if (progress) progress(frame, last);
+    const filters::Tracks& tracks = tracker.step(frame_detections);
+    append_rows(rows, frame, tracks);
+    const bool any_kept =
+        std::any_of(frame_detections.begin(), frame_detections.end(),
+                    [&](const Detection& d) { return d.confidence >= params.min_confidence; });
+    idle = !any_kept && tracker.tracker().track_count() == 0 &&
+           tracker.tracker().management().lost_count() == 0;
+    idle_run = idle ? idle_run + 1 : 0;
+    if (progress) progress(reported = frame, last);
+    core::poll_interrupt();
   }
+  if (progress && reported < last) progress(last, last);  // the skipped frames are done too
   return rows;
 }
 

@@ -10,6 +10,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "vtrack/core/errors.hpp"
+#include "vtrack/core/interrupt.hpp"
 
 namespace vtrack::apps {
 namespace fs = std::filesystem;
@@ -104,8 +105,7 @@ void quiet_video_backend_logs() {
 VideoInfo probe_video(const std::string& path) {
   VideoSource source(path);
   cv::Mat frame;
-  while (source.read(frame)) {
-  }
+  while (source.read(frame)) core::poll_interrupt();
   VideoInfo info;
   info.frame_count = source.frames_read();
   info.width = source.width();

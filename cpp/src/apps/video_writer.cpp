@@ -29,14 +29,23 @@ void rename_or_throw(const fs::path& from, const fs::path& to) {
   std::error_code ec;
   fs::rename(from, to, ec);
   if (ec) {
+    std::error_code ignored;
+    fs::remove(from, ignored);  // the temporary file is not left behind
     throw IoError("cannot rename '" + from.string() + "' to '" + to.string() + "': " + ec.message());
   }
 }
 
-AtomicVideoWriter::AtomicVideoWriter(const std::string& path, double fps, cv::Size size)
-    : path_(path) {
+namespace {
+
+fs::path partial_video_path(const std::string& path) {
   const fs::path target(path);
-  partial_ = target.parent_path() / (target.stem().string() + ".partial" + target.extension().string());
+  return target.parent_path() / (target.stem().string() + ".partial" + target.extension().string());
+}
+
+}  // namespace
+
+AtomicVideoWriter::AtomicVideoWriter(const std::string& path, double fps, cv::Size size)
+    : path_(path), partial_(partial_video_path(path)), registered_(partial_.string()) {
   const int fourcc = lower_extension(path) == ".mp4" ? cv::VideoWriter::fourcc('m', 'p', '4', 'v')
                                                      : cv::VideoWriter::fourcc('M', 'J', 'P', 'G');
   if (!writer_.open(partial_.string(), cv::CAP_FFMPEG, fourcc, fps, size, true)) {
@@ -64,6 +73,7 @@ void AtomicVideoWriter::write(const cv::Mat& frame) {
 void AtomicVideoWriter::commit() {
   writer_.release();
   rename_or_throw(partial_, path_);
+  registered_.release();
   committed_ = true;
 }
 

@@ -4,6 +4,7 @@
 #include <string>
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 
 #include "vtrack/core/errors.hpp"
 
@@ -36,6 +37,30 @@ double normal_quantile(double p) {
   const double e = 0.5 * std::erfc(-x / std::sqrt(2.0)) - p;
   const double u = e * std::sqrt(2.0 * M_PI) * std::exp(0.5 * x * x);
   return x - u / (1.0 + 0.5 * x * u);
+}
+
+void require_covariance(const Eigen::Ref<const Eigen::MatrixXd>& cov, const std::string& name,
+                        bool definite, Eigen::Index dim) {
+  const std::string size = std::to_string(cov.rows()) + "x" + std::to_string(cov.cols());
+  if (cov.rows() != cov.cols() || (dim >= 0 && cov.rows() != dim)) {
+    const std::string want = dim >= 0 ? std::to_string(dim) + "x" + std::to_string(dim) : "square";
+    throw InvalidArgument(name + " must be " + want + ", got " + size);
+  }
+  if (cov.size() == 0) return;
+  if (!cov.allFinite()) throw InvalidArgument(name + " contains NaN or inf");
+  const double scale = cov.cwiseAbs().maxCoeff();
+  if ((cov - cov.transpose()).cwiseAbs().maxCoeff() > 1e-9 * scale) {
+    throw InvalidArgument(name + " is not symmetric");
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(cov, Eigen::EigenvaluesOnly);
+  const double lowest = eig.eigenvalues().minCoeff();
+  if (definite && !(lowest > 0.0)) {
+    throw InvalidArgument(name + " must be positive definite, has eigenvalue " + value_text(lowest));
+  }
+  if (!definite && lowest < -1e-9 * scale) {
+    throw InvalidArgument(name + " must be positive semi-definite, has eigenvalue " +
+                          value_text(lowest));
+  }
 }
 
 Gaussian::Gaussian(Eigen::VectorXd mean, const Eigen::MatrixXd& covariance)

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "vtrack/core/errors.hpp"
+#include "vtrack/core/interrupt.hpp"
 
 namespace vtrack::core {
 namespace {
@@ -34,7 +35,10 @@ inline double to_unit(std::uint64_t bits) noexcept {
 Rng::Rng(std::uint64_t seed, std::uint64_t stream) {
   std::uint64_t x = seed;
   for (auto& word : s_) word = splitmix64(x);
-  for (std::uint64_t i = 0; i < stream; ++i) jump();
+  for (std::uint64_t i = 0; i < stream; ++i) {
+    if ((i & 4095) == 0) poll_interrupt();  // O(stream): a large stream takes a while
+    jump();
+  }
 }
 
 Rng Rng::from_state(const std::array<std::uint64_t, 4>& state) {

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "vtrack/core/errors.hpp"
+#include "vtrack/core/interrupt.hpp"
 
 namespace vtrack::assign {
 namespace {
@@ -259,6 +260,7 @@ class Murty {
       queue_.push({nodes_[root].cost, root, -1, true});
     }
     while (static_cast<std::int64_t>(out_costs.size()) < k && !queue_.empty()) {
+      if ((out_costs.size() & 63) == 0) core::poll_interrupt();  // k may be large
       const Entry e = queue_.top();
       queue_.pop();
       int id = e.node;
@@ -517,6 +519,7 @@ SampledAssignments gibbs_assignments(const Eigen::Ref<const Eigen::MatrixXd>& co
   std::map<std::vector<int>, std::int64_t> visits;
   std::vector<double> weight(static_cast<std::size_t>(m));
   for (std::int64_t sweep = 0; sweep < sweeps; ++sweep) {
+    if ((sweep & 63) == 0) core::poll_interrupt();  // sweeps may be large
     if (sweep > 0) {
       for (int i = 0; i < n; ++i) {
         // Conditional of row i given the others: its own column or any free one. The current

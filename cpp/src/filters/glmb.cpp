@@ -5,6 +5,8 @@
 #include <string>
 
 #include "vtrack/core/errors.hpp"
+#include "vtrack/core/gaussian.hpp"
+#include "vtrack/core/limits.hpp"
 #include "vtrack/filters/glmb_impl.hpp"
 
 namespace vtrack::filters {
@@ -72,8 +74,10 @@ void validate(const GlmbParams& p) {
   require_probability(p.detection_probability, "detection_probability");
   require(p.clutter_intensity > 0.0 && std::isfinite(p.clutter_intensity), "clutter_intensity",
           p.clutter_intensity, "positive and finite");
-  require(p.hypothesis_budget > 0, "hypothesis_budget", p.hypothesis_budget, "> 0");
-  require(p.max_hypotheses > 0, "max_hypotheses", p.max_hypotheses, "> 0");
+  require(p.hypothesis_budget > 0 && p.hypothesis_budget <= core::kMaxHypotheses,
+          "hypothesis_budget", p.hypothesis_budget, "in [1, 100000]");
+  require(p.max_hypotheses > 0 && p.max_hypotheses <= core::kMaxHypotheses, "max_hypotheses",
+          p.max_hypotheses, "in [1, 100000]");
   require(p.prune_threshold >= 0.0 && p.prune_threshold < 1.0, "prune_threshold",
           p.prune_threshold, "in [0, 1)");
   require(p.gate_threshold > 0.0, "gate_threshold", p.gate_threshold,
@@ -125,6 +129,10 @@ void check_glmb_dimensions(const models::LinearGaussianMotion& motion,
        observation.noise_scale.cols() != x_dim)) {
     throw InvalidArgument("observation model: noise_scale must be z_dim x x_dim (or empty)");
   }
+  // Finite models and true covariances: a negative-definite Q, R or birth covariance would be
+  // accepted by the Kalman algebra and come back as negative variances.
+  models::validate(motion);
+  models::validate(observation);
   for (std::size_t b = 0; b < births.size(); ++b) {
     require_probability(births[b].existence, "birth existence");
     const auto& d = births[b].density;
@@ -132,6 +140,9 @@ void check_glmb_dimensions(const models::LinearGaussianMotion& motion,
       throw InvalidArgument("birth component " + std::to_string(b) +
                             " has the wrong state dimension");
     }
+    const std::string name = "birth component " + std::to_string(b);
+    if (!d.mean.allFinite()) throw InvalidArgument(name + " mean contains NaN or inf");
+    core::require_covariance(d.cov, name + " cov", true, x_dim);
   }
   const auto& fov = params.field_of_view;
   if (fov.enabled) {
@@ -151,6 +162,7 @@ void check_glmb_dimensions(const models::LinearGaussianMotion& motion,
                           std::to_string(x_dim) + ", got " + std::to_string(adaptive.cov.rows()) +
                           "x" + std::to_string(adaptive.cov.cols()));
   }
+  if (adaptive.enabled) core::require_covariance(adaptive.cov, "adaptive_birth_cov", true, x_dim);
 }
 
 void GaussianTracks::log_detection_likelihoods(const Candidate& c,

@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "vtrack/core/errors.hpp"
+#include "vtrack/core/limits.hpp"
 #include "vtrack/core/weights.hpp"
 
 namespace vtrack::filters {
@@ -101,7 +102,8 @@ void validate(const MultiBernoulliParams& p) {
   require(p.sigma_wh > 0.0 && p.sigma_wh <= 1.0, "sigma_wh", p.sigma_wh, "in (0, 1]");
   require(p.birth_probability > 0.0 && p.birth_probability < 1.0, "birth_probability",
           p.birth_probability, "in (0, 1)");
-  require(p.birth_particles >= 1, "birth_particles", p.birth_particles, ">= 1");
+  require(p.birth_particles >= 1 && p.birth_particles <= core::kMaxParticles, "birth_particles",
+          p.birth_particles, "in [1, 1000000]");
   require_probability("cover_existence", p.cover_existence);
   require(p.adaptive_birth_probability > 0.0 && p.adaptive_birth_probability < 1.0,
           "adaptive_birth_probability", p.adaptive_birth_probability, "in (0, 1)");
@@ -112,6 +114,8 @@ void validate(const MultiBernoulliParams& p) {
           p.adaptive_birth_stride, "in (0, 1]");
   require(p.adaptive_birth_max >= 0, "adaptive_birth_max", p.adaptive_birth_max, ">= 0");
   require(p.min_particles >= 1, "min_particles", p.min_particles, ">= 1");
+  require(p.max_particles <= core::kMaxParticles, "max_particles", p.max_particles,
+          "<= 1000000");
   if (p.min_particles > p.max_particles) {
     throw InvalidArgument("min_particles (L_min = " + std::to_string(p.min_particles) +
                           ") must not exceed max_particles (L_max = " +

@@ -9,6 +9,7 @@
 
 #include "vtrack/core/errors.hpp"
 #include "vtrack/core/gaussian.hpp"
+#include "vtrack/core/limits.hpp"
 #include "vtrack/core/resampling.hpp"
 #include "vtrack/core/weights.hpp"
 #include "vtrack/filters/glmb_impl.hpp"
@@ -43,7 +44,8 @@ const core::ParameterTable<ParticleParams>& ParticleParams::table() {
 }
 
 void validate(const ParticleParams& p) {
-  require(p.n_particles >= 2, "n_particles", p.n_particles, ">= 2");
+  require(p.n_particles >= 2 && p.n_particles <= core::kMaxParticles, "n_particles", p.n_particles,
+          "in [2, 1000000]");
   require(p.occlusion_margin >= 0.0, "occlusion_margin", p.occlusion_margin, ">= 0 (or inf: off)");
   require(p.resample_threshold >= 0.0 && p.resample_threshold <= 1.0, "resample_threshold",
           p.resample_threshold, "in [0, 1]");

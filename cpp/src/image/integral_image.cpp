@@ -1,6 +1,7 @@
 #include "vtrack/image/integral_image.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include <opencv2/imgproc.hpp>
@@ -19,6 +20,12 @@ void IntegralImage::compute(const cv::Mat& image) {
     throw InvalidArgument("image must be uint8, float32 or float64");
   }
   cv::integral(image, table_, CV_64F);
+  // A NaN or inf pixel makes the total (and every sum over it) NaN or inf: checked in O(1) on the
+  // total, since finite float pixels cannot overflow a double sum.
+  if (depth != CV_8U && !std::isfinite(table_.at<double>(table_.rows - 1, table_.cols - 1))) {
+    table_.release();
+    throw InvalidArgument("image contains NaN or inf (or its sum overflows a double)");
+  }
 }
 
 Rect IntegralImage::clip(const Rect& rect) const {

@@ -53,6 +53,23 @@ Eigen::MatrixXd LinearGaussianObservation::noise_at(
   return r;
 }
 
+void validate(const LinearGaussianMotion& motion) {
+  if (motion.F.rows() != motion.F.cols() || motion.F.rows() == 0) {
+    throw InvalidArgument("motion F must be square and non-empty, got " +
+                          std::to_string(motion.F.rows()) + "x" + std::to_string(motion.F.cols()));
+  }
+  if (!motion.F.allFinite()) throw InvalidArgument("motion F contains NaN or inf");
+  core::require_covariance(motion.Q, "motion Q", false, motion.F.rows());
+}
+
+void validate(const LinearGaussianObservation& observation) {
+  if (observation.H.rows() == 0 || observation.H.cols() == 0) {
+    throw InvalidArgument("observation H must not be empty");
+  }
+  if (!observation.H.allFinite()) throw InvalidArgument("observation H contains NaN or inf");
+  core::require_covariance(observation.R, "observation R", true, observation.H.rows());
+}
+
 GaussianDensity kalman_predict(const GaussianDensity& prior, const LinearGaussianMotion& motion) {
   return {motion.F * prior.mean, motion.F * prior.cov * motion.F.transpose() + motion.Q};
 }

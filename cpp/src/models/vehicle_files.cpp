@@ -2,14 +2,13 @@
 // read with yaml-cpp, which parses YAML and JSON alike. The only file of vtrack::models that
 // reads files.
 #include <algorithm>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include <yaml-cpp/yaml.h>
 
 #include "vtrack/core/errors.hpp"
+#include "vtrack/core/text_file.hpp"
 #include "vtrack/models/camera.hpp"
 #include "vtrack/models/vehicle_observation.hpp"
 
@@ -20,11 +19,8 @@ namespace {
 // Loads a YAML/JSON document. A file written by cv::FileStorage starts with the non-standard
 // directive "%YAML:1.0", which yaml-cpp refuses: that line is dropped.
 YAML::Node load_document(const std::string& path, const std::string& what) {
-  std::ifstream in(path);
-  if (!in) throw IoError("cannot open " + what + " " + path);
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string s = text.str();
+  // The config files' limits (apps/config.hpp): 1 MiB, flow collections 16 deep.
+  std::string s = core::read_text_file(path, what, std::size_t{1} << 20, 16);
   if (s.rfind("%YAML:", 0) == 0) s = s.substr(std::min(s.size(), s.find('\n')));
   try {
     return YAML::Load(s);

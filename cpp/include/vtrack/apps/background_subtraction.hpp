@@ -28,7 +28,8 @@ struct BgsResult {
 //     complete image. On a decode error the job stops and the images of the frames before it
 //     stay: they are valid results of those frames.
 // IoError (naming the 0-based frame index) for a corrupt or truncated input, IoError when the
-// output cannot be written, InvalidArgument for bad `params`.
+// output cannot be written, InvalidArgument for bad `params` or an `output` that is the input
+// (apps/output_paths.hpp; checked before any file is touched).
 BgsResult run_background_subtraction(const std::string& input, const std::string& output,
                                      const image::KdeBackgroundParams& params,
                                      const FrameProgress& progress = {});

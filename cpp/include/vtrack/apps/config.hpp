@@ -35,9 +35,10 @@ struct Config {
 constexpr std::size_t kMaxConfigBytes = 1 << 20;
 constexpr int kMaxConfigNesting = 16;
 
-// Reads `path`. IoError for a missing, unreadable or oversized file and for a YAML/JSON syntax
-// error ("path: line L, column C: ..."); InvalidArgument "path: line L: ..." for a document that
-// is not a map of sections, a section that is not a map, a duplicated name, a seed that is not an
+// Reads `path`. IoError for a missing, unreadable, oversized or not regular file, for a YAML/JSON
+// syntax error ("path: line L, column C: ...") and for more than one YAML document;
+// InvalidArgument "path: line L: ..." for a document that is not a map of sections, a section
+// that is not a map, a name that is not a plain scalar, a duplicated name, a seed that is not an
 // integer in [0, 2^64 - 1], or a value that is not a number, true/false, a name or a list of
 // numbers. Sections are kept in file order; which sections a pipeline accepts is its business.
 Config read_config(const std::string& path);

@@ -57,10 +57,15 @@ struct ScoredBox {
 class HogPeopleDetector {
  public:
   explicit HogPeopleDetector(HogParams params = {});
-  // People in an 8-bit BGR (or grey) frame, best score first. InvalidArgument for an empty frame
-  // or another type. Not thread-safe on one instance (OpenCV's HOG keeps scratch state); use one
-  // detector per thread.
+  // People in an 8-bit BGR (or grey) frame, best score first. InvalidArgument for an empty frame,
+  // another type, or a frame smaller than min_frame_size(). Not thread-safe on one instance
+  // (OpenCV's HOG keeps scratch state); use one detector per thread.
   std::vector<ScoredBox> detect(const cv::Mat& frame) const;
+  // The smallest frame (width, height) detect() takes: after `upscale` it must hold one 64x128
+  // detection window (OpenCV's HOG reads outside smaller images: a crash, not "no people").
+  cv::Size min_frame_size() const;
+  // InvalidArgument naming both sizes unless a width x height frame is at least min_frame_size().
+  void check_frame_size(int width, int height) const;
   const HogParams& params() const { return params_; }
 
  private:

@@ -21,13 +21,15 @@ struct Detection {
   double confidence = 1.0;  // 1 when the file has no conf column
 };
 
-// Checks one detection: frame >= 1, finite box and confidence, w > 0 and h > 0. Throws
-// InvalidArgument whose message starts with `where` (e.g. "det.txt:12: ") and names the field
-// and its value.
+// Checks one detection: 1 <= frame <= core::kMaxFrame, finite box and confidence, w > 0 and
+// h > 0, |x|, |y|, w, h <= core::kMaxCoordinate. Throws InvalidArgument whose message starts with
+// `where` (e.g. "det.txt:12: ") and names the field and its value.
 void validate_detection(const Detection& d, const std::string& where);
 
-// Reads every detection of `path` with confidence >= min_confidence, in file order. Blank lines
-// are skipped; an empty file gives no detections. IoError for a missing or unreadable file;
+// Reads every detection of `path` with confidence >= min_confidence (a number; NaN is
+// InvalidArgument), in file order. Blank lines are skipped; an empty file gives no detections.
+// Bytes that are not UTF-8 are reported in messages as they are. IoError for a missing or
+// unreadable file;
 // InvalidArgument "path:line: ..." for a line with fewer than 6 or more than 10 fields, a field
 // that is not a number, a non-integer frame, or a detection validate_detection rejects.
 std::vector<Detection> read_detections(

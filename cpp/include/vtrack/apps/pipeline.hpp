@@ -92,8 +92,10 @@ struct PipelineResult {
 
 // Runs the pipeline over every frame of `input` (a video file or image folder). When `render`
 // is not empty, writes the frames with each track's box in a colour of its own
-// (AtomicVideoWriter: nothing is left behind on error). Parameters are validated before any file
-// is touched; IoError naming the frame for corrupt or truncated input.
+// (AtomicVideoWriter: nothing is left behind on error). Parameters, the render path (not the
+// input, in a writable folder: apps/output_paths.hpp) and the frame size the method needs are
+// checked before any file is touched; IoError naming the frame for corrupt or truncated input.
+// Long runs poll core::poll_interrupt() once per frame.
 PipelineResult track_video(const std::string& input, const PipelineParams& params,
                            const std::string& render = {}, const FrameProgress& progress = {});
 

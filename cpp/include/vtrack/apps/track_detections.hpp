@@ -78,7 +78,8 @@ struct BoxTrackerParams {
   // unexplained and target-like, and a birth must be confirmed by the next detections.
   double birth_rate = 0.02;
   double birth_max_existence = 0.1;
-  // Posterior hypotheses requested per frame and kept after each update.
+  // Posterior hypotheses requested per frame and kept after each update (at most
+  // core::kMaxHypotheses).
   int hypothesis_budget = 200;
   // Squared Mahalanobis gate for the 4-D detection: the chi-square(4) quantile of
   // P_G = 0.9999999 (38.24).
@@ -205,8 +206,11 @@ std::pair<int, int> detections_extent(const std::vector<Detection>& detections);
 
 // Tracks the detections of frames 1 .. max(last_frame, the last frame with a detection), in a
 // width x height image (so trailing frames without detections still get their estimates); width
-// or height 0 = the detections' extent. MOTChallenge rows, conf = the track's score, ids 1, 2,
-// ... in order of first appearance.
+// or height 0 = the detections' extent (InvalidArgument beyond core::kMaxImageSide).
+// MOTChallenge rows, conf = the track's score, ids 1, 2, ... in order of first appearance. Runs
+// of empty frames while nothing is tracked or remembered are skipped (they cannot change the
+// rows), so the cost does not grow with the frame numbers; progress is reported per frame
+// stepped and once at the end, and core::poll_interrupt() is polled per frame.
 std::vector<TrackRow> track_detections(const std::vector<Detection>& detections, int width,
                                        int height, const BoxTrackerParams& params = {},
                                        long long last_frame = 0,

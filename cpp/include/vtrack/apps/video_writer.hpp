@@ -8,6 +8,8 @@
 #include <opencv2/core.hpp>
 #include <opencv2/videoio.hpp>
 
+#include "vtrack/apps/temporary_files.hpp"
+
 namespace vtrack::apps {
 
 // True when `path` names a video we can write (extension .avi, .mp4 or .mkv, any case).
@@ -30,12 +32,14 @@ class AtomicVideoWriter {
  private:
   std::string path_;
   std::filesystem::path partial_;
+  TemporaryFile registered_;  // removed by a signal handler if the process is stopped mid-write
   cv::VideoWriter writer_;
   cv::Mat bgr_;
   bool committed_ = false;
 };
 
-// Renames `from` to `to`, IoError naming both on failure.
+// Renames `from` (a temporary file) to `to`; on failure removes `from` and throws IoError naming
+// both.
 void rename_or_throw(const std::filesystem::path& from, const std::filesystem::path& to);
 
 }  // namespace vtrack::apps

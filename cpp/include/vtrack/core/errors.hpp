@@ -41,5 +41,9 @@ inline std::string value_text(double v) {
 inline void require(bool ok, const char* name, double value, const char* what) {
   if (!ok) throw InvalidArgument(std::string(name) + " must be " + what + ", got " + value_text(value));
 }
+// The same for an integer parameter, whose value is shown exactly (2147483647, not 2.14748e+09).
+inline void require(bool ok, const char* name, int value, const char* what) {
+  if (!ok) throw InvalidArgument(std::string(name) + " must be " + what + ", got " + std::to_string(value));
+}
 
 }  // namespace vtrack

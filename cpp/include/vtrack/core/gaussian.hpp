@@ -2,11 +2,21 @@
 // Multivariate normal distribution N(mean, covariance): sampling through the Cholesky factor and
 // log-density. The covariance must be symmetric positive definite; anything else is an
 // InvalidArgument that says so.
+#include <string>
+
 #include <Eigen/Core>
 
 #include "vtrack/core/random.hpp"
 
 namespace vtrack::core {
+
+// Checks a covariance matrix given by a user: InvalidArgument naming `name` unless it is square
+// (of size `dim` when dim >= 0), finite, symmetric (to 1e-9 of its largest entry) and positive
+// definite (`definite`) or positive semi-definite (no eigenvalue below -1e-9 of its scale; a
+// constant-velocity Q is singular). A negative variance accepted here would come back as a
+// negative variance or NaN in every estimate.
+void require_covariance(const Eigen::Ref<const Eigen::MatrixXd>& cov, const std::string& name,
+                        bool definite, Eigen::Index dim = -1);
 
 // log(2 pi): the normaliser of every Gaussian density in vtrack, -d/2 log(2 pi) - 1/2 log|C|.
 inline constexpr double kLog2Pi = 1.8378770664093454835606594728112;

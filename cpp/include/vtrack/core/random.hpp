@@ -17,7 +17,8 @@ class Rng {
   using result_type = std::uint64_t;
 
   // `stream` selects one of 2^128 non-overlapping sub-sequences of the generator seeded with
-  // `seed` (the state is jumped `stream` times; cost O(stream), about 1 µs per jump).
+  // `seed` (the state is jumped `stream` times; cost O(stream), about 1 µs per jump, polling
+  // core::poll_interrupt() every 4096 jumps).
   explicit Rng(std::uint64_t seed = 0, std::uint64_t stream = 0);
   // An engine with exactly this 256-bit state (not all zero), for checking against the reference
   // implementation.

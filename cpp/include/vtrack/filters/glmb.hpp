@@ -165,7 +165,8 @@ struct GlmbParams {
   // divided by the surveillance volume). The standard scenario's 30 / 2000^2 = 7.5e-6.
   double clutter_intensity = 7.5e-6;
   // Posterior hypotheses requested per scan, shared among the prior hypotheses in proportion to
-  // the square root of their weights (Vo, Vo & Hoang 2017, section IV).
+  // the square root of their weights (Vo, Vo & Hoang 2017, section IV). Both at most
+  // core::kMaxHypotheses.
   int hypothesis_budget = 1000;
   int max_hypotheses = 1000;           // cap after each update (the largest weights are kept)
   double prune_threshold = 1e-15;      // hypotheses below this normalised weight are dropped

@@ -11,6 +11,7 @@
 #include <Eigen/Cholesky>
 
 #include "vtrack/core/errors.hpp"
+#include "vtrack/core/interrupt.hpp"
 #include "vtrack/core/weights.hpp"
 #include "vtrack/filters/assign.hpp"
 #include "vtrack/filters/glmb.hpp"
@@ -254,6 +255,7 @@ typename GlmbFilter<Tracks>::Posterior GlmbFilter<Tracks>::rank_hypotheses(
   };
   std::vector<int> rows, columns, tracks;
   for (std::size_t h = 0; h < hypotheses_.size(); ++h) {
+    core::poll_interrupt();  // a step with a large budget can take seconds
     const auto requested =
         static_cast<std::int64_t>(std::round(params_.hypothesis_budget * sqrt_w[h] / sqrt_total));
     if (requested < 1) continue;

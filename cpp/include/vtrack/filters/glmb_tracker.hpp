@@ -80,6 +80,7 @@ class GlmbTracker {
   Eigen::Index z_dim() const;
   bool has_depth_model() const;
   const GlmbTrackerParams& params() const { return params_; }
+  const TrackManager& management() const { return management_; }
 
  private:
   template <class F>

@@ -103,7 +103,7 @@ struct MultiBernoulliParams {
   // The paper's birth (Section 4): one Bernoulli per image quarter with r_Gamma = 0.02.
   bool quarter_birth = true;
   double birth_probability = 0.02;
-  // Particles of each birth component.
+  // Particles of each birth component (at most core::kMaxParticles, as max_particles).
   int birth_particles = 200;
 
   // Components with r >= cover_existence are "existing targets": each component is evaluated

@@ -83,7 +83,7 @@ struct ParticleDensity {
 };
 
 struct ParticleParams {
-  int n_particles = 500;  // particles per track (birth densities are sampled with this many)
+  int n_particles = 500;  // particles per track, <= core::kMaxParticles (births sampled with as many)
   double resample_threshold = 0.5;  // resample when N_eff < resample_threshold * n_particles
   // Whether birth rows take the depth factor in their missed branch too (eq. 8's psi applies to
   // every label); false scores a birth's missed branch by (1 - p_D) alone.

@@ -61,6 +61,8 @@ class TrackManager {
   void end(std::uint64_t id, const TrackRecord& record);
 
   const TrackManagementParams& params() const { return params_; }
+  // Lost tracks currently remembered (0: nothing depends on how many steps pass).
+  std::size_t lost_count() const { return lost_.size(); }
 
  private:
   struct LostTrack {

@@ -37,6 +37,13 @@ struct LinearGaussianObservation {
                                                                  const Eigen::MatrixXd& R);
 };
 
+// InvalidArgument naming the matrix unless F is square and finite and Q a covariance of its
+// size (symmetric, positive semi-definite: core::require_covariance).
+void validate(const LinearGaussianMotion& motion);
+// InvalidArgument naming the matrix unless H is finite with rows = R's size and R is a positive
+// definite covariance (eq. 2's likelihood needs R^-1).
+void validate(const LinearGaussianObservation& observation);
+
 struct GaussianDensity {
   Eigen::VectorXd mean;
   Eigen::MatrixXd cov;

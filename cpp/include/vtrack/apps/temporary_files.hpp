@@ -1,0 +1,34 @@
+#pragma once
+// Temporary output files: "tracks.txt.partial", "out.partial.mp4", "000012.partial.png", ... that
+// a writer has created and not yet renamed to their final name or removed. Writers register each
+// one for as long as it exists, so that a process stopped by SIGINT or SIGTERM in the middle of
+// a write can remove them from its signal handler (the CLI does): remove_temporary_files() only
+// uses async-signal-safe operations. Errors and ordinary interruptions need none of this: the
+// writers remove their temporary files as the exception unwinds.
+#include <string>
+
+namespace vtrack::apps {
+
+// At most this many temporary files are registered at once (vtrack writes at most three at a
+// time); a path beyond the table or longer than 4095 bytes is simply not registered.
+constexpr int kMaxTemporaryFiles = 32;
+
+// Registers `path` for its lifetime; release() (or destruction) deregisters it. Neither creates
+// nor removes the file.
+class TemporaryFile {
+ public:
+  explicit TemporaryFile(const std::string& path);
+  ~TemporaryFile() { release(); }
+  TemporaryFile(const TemporaryFile&) = delete;
+  TemporaryFile& operator=(const TemporaryFile&) = delete;
+  void release() noexcept;
+
+ private:
+  int slot_ = -1;
+};
+
+// Removes (unlinks) every registered temporary file; async-signal-safe. Returns how many
+// registrations it found.
+int remove_temporary_files() noexcept;
+
+}  // namespace vtrack::apps
