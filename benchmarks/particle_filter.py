@@ -35,7 +35,7 @@ some N took longer than --budget seconds is not run at larger N.
 
 The machine's floor for this problem is the cost of the random numbers and exponentials alone:
 4 normals and 1 exp per particle-step. This script prints NumPy's (standard_normal + exp);
-vtrack's is in benchmarks/cpp/smc_floor.cpp (LaneRng normals + core::vmath::exp, and the SIR step
+vtrack's is in benchmarks/cpp/smc_micro.cpp (LaneRng normals + core::vmath::exp, and the SIR step
 split by stage), whose header holds the measured figures.
 
 Measured 2026-11-24 (2 vCPU VM shared with builds, load average 4-12, `--sizes 1000 10000 100000
@@ -51,7 +51,7 @@ RMSE 2.13-2.25 m for every filter. Resample-move at 1e5: vtrack 17.1 M, NumPy 4.
 MCMC regulariser 0.84 M (vtrack 20x Stone Soup). The issue's 10x-NumPy bar at 1e5 is not met:
 the NumPy reference runs at 43 % of NumPy's own floor (its normals and exponentials alone), and
 vtrack's SIR already runs 1.6x faster than that floor (vtrack's own floor per stage is measured by
-benchmarks/cpp/smc_floor.cpp).
+benchmarks/cpp/smc_micro.cpp).
 """
 
 import argparse
