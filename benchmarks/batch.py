@@ -49,7 +49,23 @@ Measured 2026-11-24 (after the merge of the one tracker surface; ``--repeats 3``
 | Dask no-op task, one at a time | 10.56 / 12.43 | 0.95 % / 1.33 % |
 | local cluster start (1-2 workers) | 5973 / 6331 | once per batch |
 
-What these say, and what they cannot:
+Idle machine, same command (2026-11-24, 1-min load 0.9 to 2.2; medians of 3):
+
+| configuration | s | frames/s | vs seq | CPU s |
+|---|---|---|---|---|
+| sequential loop, KDE 1 thread | 9.12 | 153.5 | 1.00x | 11.91 |
+| sequential loop, KDE default threads | 7.95 | 176.0 | 1.15x | 12.68 |
+| batch's task in a loop, no Dask | 9.30 | 150.5 | 0.98x | 12.39 |
+| batch, 1 worker | 9.69 | 144.4 | 0.94x | 12.91 |
+| batch, 2 workers | 5.99 | 233.7 | 1.52x | 11.79 |
+
+Dask no-op task: 4.52 ms in flight (0.48 % of a 946 ms 100-frame clip), 11.73 ms alone (1.24 %);
+batch with 1 worker minus the task loop: 32.3 ms per input; local cluster start 754 ms. So on idle
+cores bar 1 FAILS too (1.52x < 1.8x), below the ~1.65x the argument below expected; the cluster
+start (0.75 s of the 6.0 s) and the 32 ms per input are where to look next. Bar 2 holds for
+tasks in flight, not for a lone task.
+
+Loaded machine (the two runs above). What these say, and what they cannot:
 - Bar 1 (2 workers >= 1.8x sequential) is NOT shown: 0.86x and 0.87x. On this machine it cannot
   be: the kernel's autogroup scheduling is on (/proc/sys/kernel/sched_autogroup_enabled = 1), so
   every process of one session -- the sequential loop, or the batch's client and its worker
