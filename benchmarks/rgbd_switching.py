@@ -1,6 +1,7 @@
 """The RGB-D switching observation model against detection-only GLMB tracking.
 
-Usage: python benchmarks/rgbd_switching.py [--seeds N] [--frames K] [--particles P] [--ablations]
+Usage: python benchmarks/rgbd_switching.py [--seeds N] [--first-seed S] [--frames K] [--particles P]
+                                           [--ablations]
           [--tempering T] [--sigma-target S] [--sigma-background S] [--figure PATH]
 
 On vtrack.rgbd.make_rgbd_scene (four people walking 1.5-6 m in front of a simulated 320 x 240
@@ -85,7 +86,8 @@ METHODS = {
     "gaussian, detection-only": dict(density="gaussian", switching=False),
 }
 # --ablations: the switching model without its one deviation from the paper (eq. 4 on the raw
-# depth image, detections' footprints not blanked), and with births scored without depth.
+# depth image, detections' footprints not blanked), with births scored without depth, without
+# occlusion ordering; and the consistent-label estimator (issue 17) on two of the trackers.
 ABLATIONS = {
     "switching, detections not masked (eq. 4 as is)": dict(density="particle", switching=True,
                                                            mask_detections=False),
@@ -93,6 +95,10 @@ ABLATIONS = {
                                             depth_for_births=False),
     "switching, no occlusion ordering": dict(density="particle", switching=True,
                                              occlusion_margin=float("inf")),
+    "switching, consistent labels": dict(density="particle", switching=True,
+                                         label_estimator="consistent"),
+    "gaussian, consistent labels": dict(density="gaussian", switching=False,
+                                        label_estimator="consistent"),
 }
 C = 1.0  # OSPA cut-off (m)
 
@@ -191,6 +197,8 @@ def figure(scene, results, path):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--seeds", type=int, default=5)
+    parser.add_argument("--first-seed", type=int, default=0,
+                        help="seeds first..first+N-1 (5 gives the held-out seeds 5-9)")
     parser.add_argument("--frames", type=int, default=300)
     parser.add_argument("--particles", type=int, default=300)
     parser.add_argument("--tempering", type=float, default=None,
@@ -218,7 +226,7 @@ def main():
         methods = {k: v for k, v in methods.items() if v["switching"]}
 
     per_method = {m: [] for m in methods}
-    for seed in range(args.seeds):
+    for seed in range(args.first_seed, args.first_seed + args.seeds):
         scene = make_rgbd_scene(seed=seed, frames=args.frames)
         kept = {}
         for method, spec in methods.items():
@@ -239,13 +247,15 @@ def main():
                      f"{med['te_frag']:.0f} ({total['te_frag']})", f"{med['idf1']:.3f}",
                      f"{total['kept']} / {total['relabelled']} / {total['lost']}",
                      f"{med['burst']:.2f}", f"{med['card']:.3f}", f"{med['ms']:.2f}"])
-    print(f"RGB-D switching observation model, {args.seeds} seeds x {args.frames} frames, "
+    last_seed = args.first_seed + args.seeds - 1
+    print(f"RGB-D switching observation model, seeds {args.first_seed}-{last_seed} x "
+          f"{args.frames} frames, "
           f"{args.particles} particles/track, depth model {depth_params}; medians over seeds "
           "(totals in brackets)\n")
     print_table(["tracker", "OSPA (m)", "OSPA(2) (m)", "label switches", "fragmentations",
                  "IDSW (TrackEval)", "Frag (TrackEval)", "IDF1", "bursts kept/relab./lost",
                  "burst coverage", "card. err.", "ms/scan"], rows)
-    if args.figure:
+    if args.figure and args.first_seed <= args.figure_seed <= last_seed:
         print(f"\nfigure (seed {args.figure_seed}): {args.figure}")
 
 
