@@ -132,13 +132,10 @@ using SirVariant = std::variant<Sir<LinearTransition, models::LinearGaussianLike
                                 Sir<PyMotion, models::RangeBearingObservation>,
                                 Sir<PyMotion, PyObservation>>;
 
-class ParticleFilter {
+// What both Python-facing filters share: dispatch on the variant of model types, and step.
+template <class Variant>
+class VariantFilter {
  public:
-  ParticleFilter(const py::handle& motion, const py::handle& observation, const py::handle& prior,
-                 const smc::SirParams& params)
-      : filter_(make(motion_from(motion, params.seed), observation_from(observation), prior,
-                     params)) {}
-
   template <class F>
   auto visit(F&& fn) {
     return std::visit(std::forward<F>(fn), filter_);
@@ -156,6 +153,20 @@ class ParticleFilter {
       return Eigen::VectorXd(f.step(measurement));
     });
   }
+
+ protected:
+  explicit VariantFilter(Variant filter) : filter_(std::move(filter)) {}
+
+  Variant filter_;
+};
+
+class ParticleFilter : public VariantFilter<SirVariant> {
+ public:
+  ParticleFilter(const py::handle& motion, const py::handle& observation, const py::handle& prior,
+                 const smc::SirParams& params)
+      : VariantFilter(make(motion_from(motion, params.seed), observation_from(observation), prior,
+                           params)) {}
+
   Eigen::VectorXd predict() {
     return visit([&](auto& f) {
       py::gil_scoped_release release;
@@ -180,8 +191,6 @@ class ParticleFilter {
         },
         motion, observation);
   }
-
-  SirVariant filter_;
 };
 
 // ---- MCMCParticleFilter ------------------------------------------------------------------
@@ -191,29 +200,12 @@ using Mcmc = smc::McmcFilter<LinearTransition, O>;
 using McmcVariant = std::variant<Mcmc<models::LinearGaussianLikelihood>,
                                  Mcmc<models::RangeBearingObservation>, Mcmc<PyObservation>>;
 
-class McmcParticleFilter {
+class McmcParticleFilter : public VariantFilter<McmcVariant> {
  public:
   McmcParticleFilter(const py::handle& motion, const py::handle& observation,
                      const core::Gaussian& prior, const smc::McmcParams& params)
-      : filter_(make(motion, observation_from(observation), prior, params)) {}
+      : VariantFilter(make(motion, observation_from(observation), prior, params)) {}
 
-  template <class F>
-  auto visit(F&& fn) {
-    return std::visit(std::forward<F>(fn), filter_);
-  }
-  template <class F>
-  auto visit(F&& fn) const {
-    return std::visit(std::forward<F>(fn), filter_);
-  }
-
-  Eigen::VectorXd step(const py::handle& z) {
-    auto zz = as_vector(z, "z");
-    const Eigen::VectorXd measurement = vector_map(zz);
-    return visit([&](auto& f) {
-      py::gil_scoped_release release;
-      return Eigen::VectorXd(f.step(measurement));
-    });
-  }
 
  private:
   static McmcVariant make(const py::handle& motion_obj, Observation observation,
@@ -231,8 +223,6 @@ class McmcParticleFilter {
         },
         observation);
   }
-
-  McmcVariant filter_;
 };
 
 // Scalar or sequence -> per-component standard deviations; dims from the sequence's length.
