@@ -10,6 +10,7 @@
 #include "vtrack/core/gaussian.hpp"
 #include "vtrack/filters/detector_learning.hpp"
 #include "vtrack/filters/glmb.hpp"
+#include "distributions.hpp"
 
 using namespace vtrack;
 using filters::ClutterRate;
@@ -18,9 +19,9 @@ using filters::Forgetting;
 using filters::ScoreModel;
 using filters::WeightedGaussian;
 
-namespace {
+using vtrack::test_reference::normal_cdf;
 
-double normal_cdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
+namespace {
 
 }  // namespace
 

@@ -7,6 +7,7 @@
 
 #include "vtrack/core/errors.hpp"
 #include "vtrack/core/random.hpp"
+#include "distributions.hpp"
 
 using vtrack::core::Rng;
 
@@ -82,7 +83,7 @@ double chi_square_deciles(const std::vector<double>& values, double (*cdf)(doubl
   return chi2;
 }
 
-double normal_cdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
+using vtrack::test_reference::normal_cdf;
 
 TEST(Rng, NormalBatchedAndSingleFollowTheStandardNormal) {
   Rng rng(2);

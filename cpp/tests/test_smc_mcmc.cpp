@@ -12,24 +12,14 @@
 #include "vtrack/models/linear_gaussian_likelihood.hpp"
 #include "vtrack/models/motion.hpp"
 #include "vtrack/smc/mcmc.hpp"
+#include "distributions.hpp"
 
 using namespace vtrack;
 
+using vtrack::test_reference::ks_statistic;
+using vtrack::test_reference::normal_cdf;
+
 namespace {
-
-double normal_cdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
-
-template <class Cdf>
-double ks_statistic(std::vector<double> x, Cdf cdf) {
-  std::sort(x.begin(), x.end());
-  const double n = static_cast<double>(x.size());
-  double d = 0.0;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    const double f = cdf(x[i]);
-    d = std::max({d, f - static_cast<double>(i) / n, static_cast<double>(i + 1) / n - f});
-  }
-  return d;
-}
 
 std::vector<double> column(const Eigen::MatrixXd& m, int c) {
   return std::vector<double>(m.col(c).data(), m.col(c).data() + m.rows());

@@ -9,28 +9,17 @@
 #include "vtrack/core/lane_rng.hpp"
 #include "vtrack/core/random.hpp"
 #include "vtrack/core/vmath.hpp"
+#include "distributions.hpp"
 
 using namespace vtrack::core;
+
+using vtrack::test_reference::ks_statistic;
+using vtrack::test_reference::normal_cdf;
 
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kEps = std::numeric_limits<double>::epsilon();
-
-// Kolmogorov-Smirnov statistic of a sample against a continuous CDF.
-template <class Cdf>
-double ks_statistic(std::vector<double> x, Cdf cdf) {
-  std::sort(x.begin(), x.end());
-  const double n = static_cast<double>(x.size());
-  double d = 0.0;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    const double f = cdf(x[i]);
-    d = std::max({d, f - static_cast<double>(i) / n, static_cast<double>(i + 1) / n - f});
-  }
-  return d;
-}
-
-double normal_cdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
 
 }  // namespace
 
