@@ -14,6 +14,8 @@
 #include "vtrack/apps/track_detections.hpp"
 #include "vtrack/core/errors.hpp"
 
+#include <unistd.h>
+
 namespace {
 
 using vtrack::apps::BoxTrackerParams;
@@ -22,9 +24,11 @@ using vtrack::apps::Detection;
 class DetectionFile : public ::testing::Test {
  protected:
   std::string write(const std::string& text) {
+    // The process id: ctest runs the tests of this fixture in parallel processes, which share
+    // gtest's time-based random seed (one test's TearDown removed another's files).
     const auto path = std::filesystem::temp_directory_path() /
-                      ("vtrack_det_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-                       "_" + std::to_string(counter_++) + ".txt");
+                      ("vtrack_det_" + std::to_string(::getpid()) + "_" +
+                       std::to_string(counter_++) + ".txt");
     std::ofstream(path) << text;
     paths_.push_back(path);
     return path.string();
