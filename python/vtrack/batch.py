@@ -379,7 +379,7 @@ def _summary_row(run: dict, with_metrics: bool) -> List[str]:
         return "" if v is None else format(v, fmt)
 
     row = [run["input"], run["name"], run["status"], number(run.get("frames"), "d"),
-           number(run.get("seconds"), ".3f"), number(run.get("fps"), ".2f"), run.get("error") or ""]
+           number(run.get("seconds"), ".6f"), number(run.get("fps"), ".2f"), run.get("error") or ""]
     if with_metrics:
         metrics = run.get("metrics") or {}
         row += [number(metrics.get(k), ".6f") for k in METRIC_COLUMNS]
