@@ -105,35 +105,39 @@ void ParticleTracks::set_depth(const cv::Mat* depth,
   depth_frame_->occluders = std::move(occluders);
 }
 
+const Eigen::MatrixXd& ParticleTracks::normal_draws(Eigen::Index n, Eigen::Index d) {
+  noise_.resize(d, n);
+  rng_.fill_normal(noise_.data(), static_cast<std::size_t>(noise_.size()));
+  noise_rows_ = noise_.transpose();
+  return noise_rows_;
+}
+
 ParticleDensity ParticleTracks::predict(const Density& prior,
                                         const models::LinearGaussianMotion& motion) {
-  const Eigen::Index n = prior.x.cols();
-  noise_.resize(prior.x.rows(), n);
-  rng_.fill_normal(noise_.data(), static_cast<std::size_t>(noise_.size()));
-  Density out{motion.F * prior.x, prior.log_w};
-  out.x.noalias() += motion_noise_sqrt_ * noise_;
+  // x_p' = F x_p + S v_p for every row x_p^T: X' = X F^T + V S^T (S is symmetric).
+  const Eigen::MatrixXd& noise = normal_draws(prior.size(), prior.dim());
+  Density out = prior;
+  out.states().noalias() = prior.states() * motion.F.transpose();
+  out.states().noalias() += noise * motion_noise_sqrt_;
   return out;
 }
 
 ParticleDensity ParticleTracks::birth(const models::GaussianDensity& density) {
   const Eigen::MatrixXd L = cholesky_of(density.cov, "birth covariance");
-  noise_.resize(density.mean.size(), params_.n_particles);
-  rng_.fill_normal(noise_.data(), static_cast<std::size_t>(noise_.size()));
-  Density out{L * noise_, Eigen::VectorXd::Constant(params_.n_particles,
-                                                     -std::log(static_cast<double>(params_.n_particles)))};
-  out.x.colwise() += density.mean;
-  return out;
+  Eigen::MatrixXd states = normal_draws(params_.n_particles, density.mean.size()) * L.transpose();
+  states.rowwise() += density.mean.transpose();
+  return Density(std::move(states));
 }
 
 ParticleTracks::Candidate ParticleTracks::candidate(
     Density predicted, const models::LinearGaussianObservation& observation, bool is_birth) {
-  Eigen::MatrixXd z = observation.H * predicted.x;
+  Eigen::MatrixXd z = observation.H * predicted.states().transpose();
   // The Gaussian moment match only gates (it is never used for weights); its covariance is
   // positive definite because Sigma is.
   models::KalmanInnovation gate(moments(predicted), observation);
   Candidate c{std::move(predicted), std::move(gate), std::move(z), {}, 0.0, {}};
   if (depth_frame_ && (!is_birth || params_.depth_for_births)) {
-    c.depth_log_ratio.resize(c.predicted.x.cols());
+    c.depth_log_ratio.resize(c.predicted.size());
     Eigen::VectorXd visible;
     depth_model_->log_ratio(*depth_frame_, c.predicted_z, c.depth_log_ratio, &visible);
     if (params_.occluded_detection_probability && visible.minCoeff() < 1.0) {
@@ -145,7 +149,7 @@ ParticleTracks::Candidate ParticleTracks::candidate(
           ((1.0 - pd * visible.array()) / (1.0 - pd)).log();
     }
     // log eta_depth = log sum_p w_p g2(d|x_p) / prod_all varphi (the common product cancels).
-    c.log_eta_depth = core::log_sum_exp(c.predicted.log_w + c.depth_log_ratio);
+    c.log_eta_depth = core::log_sum_exp(c.predicted.log_weights() + c.depth_log_ratio);
   }
   return c;
 }
@@ -172,28 +176,20 @@ void ParticleTracks::log_detection_likelihoods(const Candidate& c,
     log_g1(c, z.col(j), lg);
     if (c.log_visible.size() > 0) lg += c.log_visible;  // p_D(x) / p_D, see candidate()
     // eta = sum_p w_p g1(z|x_p) (eq. 2 under the particle density).
-    out[j] = core::log_sum_exp(c.predicted.log_w + lg);
+    out[j] = core::log_sum_exp(c.predicted.log_weights() + lg);
   }
 }
 
 ParticleDensity ParticleTracks::reweight(const Density& prior, const Eigen::VectorXd& log_lik) {
-  Density out{prior.x, prior.log_w + log_lik};
-  const double total = core::log_sum_exp(out.log_w);
-  if (!std::isfinite(total)) {
-    // No particle explains the data (all weights underflowed in the log domain, or +inf): keep
-    // the prior rather than produce NaN. The hypothesis weight already carries the evidence.
+  Density out = prior;
+  if (!out.reweight(log_lik).updated()) {
+    // No particle explains the data (all weights underflowed in the log domain): keep the prior
+    // rather than produce NaN. The hypothesis weight already carries the evidence.
     return prior;
   }
-  out.log_w.array() -= total;
-  const Eigen::Index n = out.x.cols();
-  if (core::effective_sample_size_log(out.log_w) < params_.resample_threshold * n) {
-    const Eigen::VectorXd w = out.log_w.array().exp();
-    const auto ancestors =
-        core::resample(core::ResamplingScheme::Systematic, w, static_cast<std::size_t>(n), rng_);
-    Eigen::MatrixXd x(out.x.rows(), n);
-    for (Eigen::Index p = 0; p < n; ++p) x.col(p) = out.x.col(ancestors[p]);
-    out.x = std::move(x);
-    out.log_w.setConstant(-std::log(static_cast<double>(n)));
+  const Eigen::Index n = out.size();
+  if (out.ess() < params_.resample_threshold * static_cast<double>(n)) {
+    out.resample(core::ResamplingScheme::Systematic, n, rng_);
   }
   return out;
 }
@@ -211,11 +207,7 @@ ParticleDensity ParticleTracks::missed(const Candidate& c) {
 }
 
 models::GaussianDensity ParticleTracks::moments(const Density& d) {
-  const Eigen::VectorXd w = (d.log_w.array() - core::log_sum_exp(d.log_w)).exp();
-  Eigen::VectorXd mean = d.x * w;
-  const Eigen::MatrixXd centred = d.x.colwise() - mean;
-  Eigen::MatrixXd cov = centred * w.asDiagonal() * centred.transpose();
-  return {std::move(mean), std::move(cov)};
+  return {d.mean(), d.covariance()};
 }
 
 ParticleGlmbFilter::ParticleGlmbFilter(models::LinearGaussianMotion motion,

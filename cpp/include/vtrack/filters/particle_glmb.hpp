@@ -4,7 +4,8 @@
 // recursion equations based on particle approximation"). The hypothesis machinery is
 // GlmbFilter's (filters/glmb.hpp); this file supplies the density policy.
 //
-// Track density: a weighted particle set {w_p, x_p} (log weights, normalised).
+// Track density: a weighted particle set {w_p, x_p} of the SMC engine (smc::ParticleSet: one
+// particle per row, normalised log weights; its reweight gives log eta, its resample the scheme).
 // Prediction: x_p' = F x_p + v_p, v_p ~ N(0, Q) (eq. 7's linear-Gaussian motion, sampled with the
 // filter's own seeded engine: the same seed gives the same tracks).
 // Update, the switching psi of eq. (8) (the display after eq. 8):
@@ -62,8 +63,8 @@
 
 // Gating uses the moment-matched Gaussian of the predicted particles: a detection enters a row
 // only if its squared Mahalanobis distance under N(H m, H P H^T + Sigma) is within the gate.
-// Resampling: systematic (core/resampling.hpp), after an update whose effective sample size falls
-// below resample_threshold x particles.
+// Resampling: systematic (core/resampling.hpp, through smc::ParticleSet::resample), after an
+// update whose effective sample size falls below resample_threshold x particles.
 #include <optional>
 #include <vector>
 
@@ -74,13 +75,11 @@
 #include "vtrack/core/random.hpp"
 #include "vtrack/filters/glmb.hpp"
 #include "vtrack/models/depth_likelihood.hpp"
+#include "vtrack/smc/particle_set.hpp"
 
 namespace vtrack::filters {
 
-struct ParticleDensity {
-  Eigen::MatrixXd x;      // x_dim x N, one particle per column
-  Eigen::VectorXd log_w;  // N normalised log weights
-};
+using ParticleDensity = smc::ParticleSet<double>;
 
 struct ParticleParams {
   int n_particles = 500;  // particles per track, <= core::kMaxParticles (births sampled with as many)
@@ -122,7 +121,7 @@ class ParticleTracks {
   struct Candidate {
     Density predicted;
     models::KalmanInnovation gate;  // of the moment-matched Gaussian, for gating only
-    Eigen::MatrixXd predicted_z;    // H x_p, z_dim x N
+    Eigen::MatrixXd predicted_z;    // H x_p, z_dim x N (one particle per column, as detections)
     // Per-particle tempered depth log ratio (empty without a depth image) and log eta_depth.
     Eigen::VectorXd depth_log_ratio;
     double log_eta_depth = 0.0;
@@ -163,6 +162,9 @@ class ParticleTracks {
               Eigen::VectorXd& out) const;
   // Adds log_lik to the weights, renormalises, and resamples when N_eff is low.
   Density reweight(const Density& prior, const Eigen::VectorXd& log_lik);
+  // n x d standard normal draws, filled particle by particle (as the d x n layout this filter had
+  // before the engine: the same seed gives the same particles).
+  const Eigen::MatrixXd& normal_draws(Eigen::Index n, Eigen::Index d);
 
   ParticleParams params_;
   Eigen::MatrixXd motion_noise_sqrt_;      // S with S S^T = Q (Q may be singular, as eq. 7's)
@@ -172,7 +174,8 @@ class ParticleTracks {
   std::optional<models::DepthFrame> depth_frame_;
   double detection_probability_ = 0.0;
   core::Rng rng_;
-  Eigen::MatrixXd noise_;  // scratch for the normal draws
+  Eigen::MatrixXd noise_;  // scratch for the normal draws (d x n) and their transpose (n x d)
+  Eigen::MatrixXd noise_rows_;
   Eigen::VectorXd scratch_;
 };
 
