@@ -99,6 +99,9 @@ Eigen::MatrixXd WeightedGaussian::covariance() const {
 }
 
 Eigen::VectorXd WeightedGaussian::log_density(const Eigen::Ref<const Eigen::MatrixXd>& y) const {
+  // No columns, no densities (Eigen's triangular solve reads coefficient (0, 0) even of an empty
+  // right-hand side: UndefinedBehaviorSanitizer's finding on a scan without detections).
+  if (y.cols() == 0) return Eigen::VectorXd();
   const Eigen::VectorXd m = mean();
   Eigen::LLT<Eigen::MatrixXd> llt(covariance());
   if (llt.info() != Eigen::Success) llt.compute(c0_);  // round-off only: the prior keeps it PD
