@@ -469,6 +469,14 @@ def trackers(particles: int) -> Dict[str, Tuple[Callable[[int], object], bool]]:
             print(f"(OpenCV {name} not available in this cv2 {cv2.__version__}: row skipped)")
         else:
             out[f"OpenCV {label}"] = (factory, False)
+    vtrack = vtrack_module()
+    if vtrack is not None:
+        out[f"vtrack color PF, N={particles}"] = (
+            lambda seed: vtrack.ColorParticleTracker(n_particles=particles, seed=seed), True)
+        out[f"vtrack part-based PF, 2 parts x {particles // 2}"] = (
+            lambda seed: vtrack.PartParticleTracker(n_particles=particles // 2, seed=seed), True)
+        out[f"vtrack part-based PF, 2 parts x {particles}"] = (
+            lambda seed: vtrack.PartParticleTracker(n_particles=particles, seed=seed), True)
     out[f"NumPy color PF, N={particles}, sigma=0.2"] = (
         lambda seed: NumpyColorPF(particles, seed, sigma=0.2), True)
     out[f"NumPy color PF, N={particles}, sigma^2=0.2"] = (
@@ -479,7 +487,23 @@ def trackers(particles: int) -> Dict[str, Tuple[Callable[[int], object], bool]]:
 def speed_trackers() -> Dict[str, Callable[[int, int], object]]:
     """name -> factory(n_particles, seed) for the table of time against N (the paper's Table 1);
     the first is the reference of the ratio column. vtrack's particle filters join here."""
-    return {"NumPy color PF, sigma=0.2": lambda n, seed: NumpyColorPF(n, seed, sigma=0.2)}
+    out = {"NumPy color PF, sigma=0.2": lambda n, seed: NumpyColorPF(n, seed, sigma=0.2)}
+    vtrack = vtrack_module()
+    if vtrack is not None:
+        out["vtrack color PF"] = lambda n, seed: vtrack.ColorParticleTracker(n_particles=n, seed=seed)
+        out["vtrack part-based PF, 2 parts, N per part"] = (
+            lambda n, seed: vtrack.PartParticleTracker(n_particles=n, seed=seed))
+    return out
+
+
+def vtrack_module():
+    """The installed vtrack, or None (its rows are then skipped)."""
+    try:
+        import vtrack
+    except ImportError:
+        print("(vtrack is not installed: its rows are skipped)")
+        return None
+    return vtrack
 
 
 # ---- running -------------------------------------------------------------------------------------

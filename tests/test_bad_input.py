@@ -299,6 +299,8 @@ CLASSES = {
     "GlmbTracker": lambda **kw: vtrack.GlmbTracker(MOTION, OBSERVATION, [], **kw),
     "HogPeopleDetector": lambda **kw: vtrack.HogPeopleDetector(**kw),
     "DepthLikelihood": lambda **kw: vtrack.models.DepthLikelihood(64, 48, 50.0, **kw),
+    "ColorParticleTracker": lambda **kw: vtrack.ColorParticleTracker(**kw),
+    "PartParticleTracker": lambda **kw: vtrack.PartParticleTracker(**kw),
 }
 DEFAULTS = {
     "KdeBackground": vtrack.KdeBackground.default_params(),
@@ -307,6 +309,8 @@ DEFAULTS = {
     "GlmbTracker": vtrack.GlmbTracker.default_params(),
     "HogPeopleDetector": vtrack.HogPeopleDetector.default_params(),
     "DepthLikelihood": vtrack.models.DepthLikelihood.default_params(),
+    "ColorParticleTracker": vtrack.ColorParticleTracker.default_params(),
+    "PartParticleTracker": vtrack.PartParticleTracker.default_params(),
 }
 # Always refused: NaN (no parameter means anything by it), a string, None, and (for an integer
 # parameter) an int beyond its type. Refused or accepted (some parameters are documented to take
@@ -360,6 +364,11 @@ _kde = vtrack.KdeBackground()
 _hog = vtrack.HogPeopleDetector()
 _ii = vtrack.image.IntegralImage(np.ones((8, 8), np.float32))
 _depth = vtrack.models.DepthLikelihood(64, 48, 50.0)
+_frame = np.random.default_rng(0).integers(1, 255, (48, 64, 3), dtype=np.uint8)
+_color = vtrack.ColorParticleTracker()
+_color.init(_frame, (10, 10, 20, 20))
+_parts = vtrack.PartParticleTracker()
+_parts.init(_frame, (10, 10, 20, 20))
 ARRAY_TAKERS = {
     "BoxTracker.step": _box.step,
     "MultiBernoulliTracker.step": _mb.step,
@@ -389,6 +398,13 @@ ARRAY_TAKERS = {
     "ospa2": lambda a: vtrack.metrics.ospa2(a, a, 5.0),
     "track_detections": lambda a: vtrack.track_detections(a),
     "write_mot": lambda a: vtrack.io.write_mot(os.devnull, a),
+    "ColorParticleTracker.init": lambda a: vtrack.ColorParticleTracker().init(a, (0, 0, 4, 4)),
+    "ColorParticleTracker.init-box": lambda a: vtrack.ColorParticleTracker().init(_frame, a),
+    "ColorParticleTracker.update": _color.update,
+    "PartParticleTracker.init": lambda a: vtrack.PartParticleTracker().init(a, (0, 0, 4, 4)),
+    "PartParticleTracker.init-box": lambda a: vtrack.PartParticleTracker().init(_frame, a),
+    "PartParticleTracker.update": _parts.update,
+    "PartParticleTracker-parts": lambda a: vtrack.PartParticleTracker(parts=a),
 }
 # Inputs some functions accept by definition: NaN rows are "absent" in ospa2 tracks and NaN
 # depth is "no reading"; inf weights/costs have meanings in the log domain and in assignment.

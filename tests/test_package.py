@@ -108,7 +108,8 @@ def test_stub_signatures_match_the_compiled_ones(owner, name, node):
 
 COMPONENTS = [vtrack.KdeBackground, vtrack.MultiBernoulliTracker, vtrack.BoxTracker,
               vtrack.GlmbTracker, vtrack.HogPeopleDetector, vtrack.models.DepthLikelihood,
-              vtrack.smc.ParticleFilter, vtrack.smc.MCMCParticleFilter]
+              vtrack.smc.ParticleFilter, vtrack.smc.MCMCParticleFilter,
+              vtrack.ColorParticleTracker, vtrack.PartParticleTracker]
 
 
 def test_every_component_has_the_same_parameter_surface():

@@ -9,7 +9,9 @@ The main entry points are here; the rest lives in submodules that mirror the C++
 
 ============================  =========================================================
 ``vtrack.pipelines``          :func:`track_video`, :func:`track_detections` (also here)
-``vtrack.trackers``           ``MultiBernoulliTracker``, ``GlmbTracker``, ``BoxTracker``, ``Tracks``
+``vtrack.trackers``           ``MultiBernoulliTracker``, ``GlmbTracker``, ``BoxTracker``, ``Tracks``;
+                              single-object ``ColorParticleTracker``, ``PartParticleTracker``
+                              (also here)
 ``vtrack.image``              ``KdeBackground``, morphology, integral images, color histograms
 ``vtrack.detectors``          ``HogPeopleDetector``
 ``vtrack.models``             motion / observation models, the depth likelihood
@@ -40,6 +42,7 @@ NumPy arrays go in and out without copies where the layout allows; wrong dtypes 
 
 from ._core import (
     BoxTracker,
+    ColorParticleTracker,
     Gaussian,
     GlmbTracker,
     HogPeopleDetector,
@@ -52,6 +55,7 @@ from ._core import (
     MCMCParticleFilter,
     MultiBernoulliTracker,
     ParticleFilter,
+    PartParticleTracker,
     Rng,
     Tracks,
     __version__,
@@ -63,6 +67,7 @@ from .pipelines import track_detections, track_video  # noqa: E402
 
 __all__ = [
     "BoxTracker",
+    "ColorParticleTracker",
     "Gaussian",
     "GlmbTracker",
     "HogPeopleDetector",
@@ -75,6 +80,7 @@ __all__ = [
     "MCMCParticleFilter",
     "MultiBernoulliTracker",
     "ParticleFilter",
+    "PartParticleTracker",
     "Rng",
     "Tracks",
     "__version__",
