@@ -1,12 +1,15 @@
 // Bindings of the single-object colour trackers (filters/color_particle.hpp) in the shape of
 // OpenCV's tracker API: init(frame, box), update(frame) -> (ok, box). Conversion only.
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "common.hpp"
 #include "guard.hpp"
+#include "args.hpp"
 #include "params.hpp"
+#include "vtrack/apps/follow.hpp"
 #include "vtrack/core/errors.hpp"
 #include "vtrack/filters/color_particle.hpp"
 
@@ -219,6 +222,49 @@ void bind_follow(py::module_& m) {
         return "PartParticleTracker(" + keyword_text(params_dict(t.params())) + ")";
       });
   def_params<PartParticleParams>(parts, [](const PartParticleFilter& t) { return t.params(); });
+
+  m.def(
+      "follow_video",
+      [](const py::handle& video_arg, const py::handle& box_arg, const py::handle& method,
+         const py::handle& first_arg, const py::handle& last_arg, const py::handle& render_arg,
+         const py::dict& params, const py::object& progress) {
+        const std::string video = path_arg(video_arg, "video");
+        const Box box = box_from(box_arg);
+        apps::FollowParams p;
+        p.method = str_arg(method, "method");
+        if (p.method == "color") {
+          p.color = params_from_kwargs<ColorParticleParams>(params, "tracker");
+        } else if (p.method == "parts") {
+          p.parts = params_from_kwargs<PartParticleParams>(params, "tracker");
+        }
+        apps::validate(p);
+        const long long first = int_arg(first_arg, "first", 1, std::numeric_limits<int>::max());
+        const long long last =
+            last_arg.is_none() ? 0 : int_arg(last_arg, "last", 1, std::numeric_limits<int>::max());
+        const std::string render = render_arg.is_none() ? "" : path_arg(render_arg, "render");
+        const apps::FrameProgress report = progress_callback(progress);
+        std::vector<apps::FollowRow> rows;
+        {
+          PythonInterrupts interrupts;
+          py::gil_scoped_release release;
+          rows = apps::follow_video(video, box, p, first, last, render, report);
+        }
+        py::array_t<double> out({static_cast<py::ssize_t>(rows.size()), py::ssize_t{5}});
+        auto o = out.mutable_unchecked<2>();
+        for (std::size_t i = 0; i < rows.size(); ++i) {
+          const auto& r = rows[i];
+          const auto k = static_cast<py::ssize_t>(i);
+          o(k, 0) = static_cast<double>(r.frame);
+          o(k, 1) = r.x;
+          o(k, 2) = r.y;
+          o(k, 3) = r.w;
+          o(k, 4) = r.h;
+        }
+        return out;
+      },
+      py::arg("video"), py::arg("init_box"), py::arg("method"), py::arg("first"), py::arg("last"),
+      py::arg("render"), py::arg("params"), py::arg("progress"),
+      "The compiled half of vtrack.follow (use that): the (N, 5) rows frame, x, y, w, h.");
 }
 
 }  // namespace vtrack::bindings

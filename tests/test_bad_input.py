@@ -120,6 +120,8 @@ CLI_FILE_CASES = (
     + [("track-config", kind) for kind in CONFIGS]
     + [("bgs-config", kind) for kind in CONFIGS]
     + [("params-config", kind) for kind in CONFIGS]
+    + [("follow", kind) for kind in VIDEOS]
+    + [("follow-config", kind) for kind in CONFIGS]
 )
 
 
@@ -145,9 +147,14 @@ def test_cli_bad_files(tmp_path, command, kind):
         "bgs-config": ["bgs", make(tmp_path, ("v.avi", VIDEO)), "--config", bad, "--out",
                        out / "y.avi"],
         "params-config": ["params", "--config", bad],
+        "follow": ["follow", bad, "--init", "1,1,8,8", "--out", out / "t.txt", "--render",
+                   out / "r.avi"],
+        "follow-config": ["follow", make(tmp_path, ("v.avi", VIDEO)), "--init", "1,1,8,8",
+                          "--config", bad, "--out", out / "t.txt"],
     }[command]
     result, left = cli(tmp_path, *args)
-    if kind == "empty" and command in ("track-det", "track-config", "bgs-config", "params-config"):
+    if kind == "empty" and command in ("track-det", "track-config", "bgs-config", "params-config",
+                                       "follow-config"):
         # Valid: a det file without rows tracks nothing, an empty config changes nothing.
         assert result.returncode == 0, result.stderr
         return
@@ -221,6 +228,20 @@ USAGE_CASES = [
     (["params", "--seed", "-5"], "--seed"),
     (["bogus"], "bogus"),
     ([], "no command"),
+    (["follow", "{video}", "--out", "{out}"], "--init"),
+    (["follow", "{video}", "--init", "1,1,4,4"], "--out"),
+    (["follow", "--init", "1,1,4,4", "--out", "{out}"], "VIDEO"),
+    (["follow", "{video}", "--init", "1,1,4", "--out", "{out}"], "--init"),
+    (["follow", "{video}", "--init", "1,1,4,4", "--out", "{out}", "--method", "x"], "method must be one of"),
+    (["follow", "{video}", "--init", "1,1,4,4", "--out", "{out}", "--set", "sigma=nan"], "sigma"),
+    (["follow", "{video}", "--init", "1,1,4,4", "--out", "{out}", "--set", "nosuch=1"], "nosuch"),
+    (["follow", "{video}", "--init", "1,1,4,4", "--out", "{out}", "--particles", "0"], "n_particles"),
+    (["follow", "{video}", "--init", "1,1,4,4", "--out", "{out}", "--first", "0"], "--first"),
+    (["follow", "{video}", "--init", "1,1,4,4", "--out", "{out}", "--first", "3", "--last", "2"],
+     "--last"),
+    (["follow", "{video}", "--init", "1,1,4,4", "--out", "{video}"], "--out"),
+    (["follow", "{video}", "--init", "1,1,4,4", "--out", "{out}", "--render", "{video}"], "--render"),
+    (["follow", "{video}", "--init", "1,1,4,4", "--out", "{out}", "--seed", "-1"], "--seed"),
 ]
 
 

@@ -132,3 +132,93 @@ def test_target_leaving_the_image_is_not_ok():
             weights = t.weights if isinstance(t.weights, list) else [t.weights]
             assert all(np.all(np.isfinite(w)) for w in weights)
         assert all(oks[:30]) and not oks[-1]
+
+
+# ---- the follow pipeline: vtrack.follow and `vtrack follow` --------------------------------------
+
+def _exe():
+    import sysconfig
+    from pathlib import Path
+    return Path(sysconfig.get_path("scripts")) / "vtrack"
+
+
+@pytest.fixture(scope="module")
+def occlusion_video(tmp_path_factory):
+    """The person scene's first 40 frames as an MJPG .avi, and the scene."""
+    import cv2
+    scene = make_occlusion_scene("person", seed=3, noise_std=2.0)
+    path = tmp_path_factory.mktemp("follow") / "scene.avi"
+    writer = cv2.VideoWriter(str(path), cv2.VideoWriter_fourcc(*"MJPG"), 25,
+                             (scene.width, scene.height))
+    for k in range(40):
+        writer.write(scene.frame(k))
+    writer.release()
+    return path, scene
+
+
+def test_follow_matches_the_tracker_and_the_cli(occlusion_video, tmp_path):
+    import subprocess
+    import cv2
+    path, scene = occlusion_video
+    box = tuple(float(v) for v in scene.boxes[4])
+    rows = vtrack.follow(path, box, method="parts", first=5, last=30, seed=7, n_particles=20)
+    # Rows for frames 5..30, the first the init box; the tracker run by hand on the decoded
+    # frames (index k holds frame k + 1) gives the same boxes.
+    assert rows.shape == (26, 5) and rows[0, 0] == 5 and rows[-1, 0] == 30
+    np.testing.assert_allclose(rows[0, 1:], box)
+    cap = cv2.VideoCapture(str(path))
+    frames = [cap.read()[1] for _ in range(30)]
+    t = vtrack.PartParticleTracker(seed=7, n_particles=20)
+    t.init(frames[4], box)
+    expected = [t.update(frames[k - 1])[1] for k in range(6, 31)]
+    np.testing.assert_allclose(rows[1:, 1:], expected)
+    # The CLI writes the same rows, to 2 decimals.
+    out, render = tmp_path / "t.txt", tmp_path / "r.avi"
+    result = subprocess.run([str(_exe()), "follow", str(path), "--init", ",".join(map(str, box)),
+                             "--first", "5", "--last", "30", "--method", "parts", "--seed", "7",
+                             "--particles", "20", "--out", str(out), "--render", str(render)],
+                            capture_output=True, text=True, timeout=120)
+    assert result.returncode == 0, result.stderr
+    written = np.loadtxt(out, delimiter=",")
+    np.testing.assert_allclose(written, rows, atol=0.006)
+    assert cv2.VideoCapture(str(render)).get(cv2.CAP_PROP_FRAME_COUNT) == 26
+
+
+@pytest.mark.parametrize("args,word", [
+    (["--init", "300,10,30,30"], "leaves"),
+    (["--init", "10,10,0,30"], "positive width"),
+    (["--init", "10,10,20,30", "--first", "41"], "past the end"),
+])
+def test_follow_cli_bad_box_and_frames(occlusion_video, tmp_path, args, word):
+    import subprocess
+    path, _ = occlusion_video
+    out = tmp_path / "t.txt"
+    result = subprocess.run([str(_exe()), "follow", str(path), *args, "--out", str(out)],
+                            capture_output=True, text=True, timeout=120)
+    assert result.returncode == 1 and word in result.stderr, result.stderr
+    assert not out.exists() and list(tmp_path.iterdir()) == []
+    with pytest.raises(ValueError, match=word):
+        box = [float(v) for v in args[1].split(",")]
+        vtrack.follow(path, box, first=int(args[3]) if len(args) > 2 else 1)
+
+
+def test_one_tracker_updated_from_two_threads_is_serialised():
+    # update() releases the GIL and holds the object's guard: 2 x 6 updates of one frame from two
+    # threads give what 12 serial updates give.
+    import threading
+    scene = make_occlusion_scene("person", seed=1)
+    f0, f1 = scene.frame(0), scene.frame(1)
+    for cls in (vtrack.ColorParticleTracker, vtrack.PartParticleTracker):
+        serial = cls(seed=5)
+        serial.init(f0, scene.boxes[0])
+        for _ in range(12):
+            expected = serial.update(f1)
+        shared = cls(seed=5)
+        shared.init(f0, scene.boxes[0])
+        threads = [threading.Thread(target=lambda: [shared.update(f1) for _ in range(6)])
+                   for _ in range(2)]
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+        assert shared.box == expected[1]

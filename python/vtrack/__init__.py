@@ -8,7 +8,8 @@ model, plus a box tracker for any detector's output, and generic SIR / MCMC part
 The main entry points are here; the rest lives in submodules that mirror the C++ layers:
 
 ============================  =========================================================
-``vtrack.pipelines``          :func:`track_video`, :func:`track_detections` (also here)
+``vtrack.pipelines``          :func:`track_video`, :func:`track_detections`, :func:`follow`
+                              (also here)
 ``vtrack.trackers``           ``MultiBernoulliTracker``, ``GlmbTracker``, ``BoxTracker``, ``Tracks``;
                               single-object ``ColorParticleTracker``, ``PartParticleTracker``
                               (also here)
@@ -63,7 +64,7 @@ from ._core import (
 from . import assign, detectors, image, io, metrics, models, pipelines, smc, trackers  # noqa: E402
 from . import detsim, rgbd, scenarios, synthetic, synthetic_occlusion, synthetic_road, vehicles  # noqa: E402,E501
 from .io import load_config  # noqa: E402
-from .pipelines import track_detections, track_video  # noqa: E402
+from .pipelines import follow, track_detections, track_video  # noqa: E402
 
 __all__ = [
     "BoxTracker",
@@ -87,6 +88,7 @@ __all__ = [
     "assign",
     "detectors",
     "detsim",
+    "follow",
     "image",
     "io",
     "load_config",

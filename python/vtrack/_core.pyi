@@ -866,3 +866,14 @@ class PartParticleTracker:
     def params(self) -> Dict[str, Any]: ...
     @staticmethod
     def default_params() -> Dict[str, Any]: ...
+
+def follow_video(
+    video: Union[str, PathLike[str]],
+    init_box: Sequence[float],
+    method: str,
+    first: int,
+    last: Optional[int],
+    render: Optional[Union[str, PathLike[str]]],
+    params: Dict[str, Any],
+    progress: Optional[Callable[[int, int], None]],
+) -> npt.NDArray[np.float64]: ...
