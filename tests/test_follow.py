@@ -222,3 +222,19 @@ def test_one_tracker_updated_from_two_threads_is_serialised():
         for t in threads:
             t.join()
         assert shared.box == expected[1]
+
+
+def test_follow_config_file_and_keywords_agree(occlusion_video, tmp_path):
+    # A config file's tracker section and top-level seed set what keywords set.
+    path, scene = occlusion_video
+    box = tuple(float(v) for v in scene.boxes[0])
+    config = tmp_path / "follow.yml"
+    config.write_text("seed: 11\ntracker: {n_particles: 12, sigma: 0.25}\n")
+    from_file = vtrack.follow(path, box, last=15, config=config)
+    from_keywords = vtrack.follow(path, box, last=15, seed=11, n_particles=12, sigma=0.25)
+    np.testing.assert_array_equal(from_file, from_keywords)
+    assert not np.array_equal(from_keywords, vtrack.follow(path, box, last=15, seed=11))
+    with pytest.raises(ValueError, match="sections"):
+        vtrack.follow(path, box, config={"background": {}})
+    with pytest.raises(TypeError, match="n_particle"):
+        vtrack.follow(path, box, n_particle=3)
