@@ -102,8 +102,11 @@ default); 0.11 / 0.18 / 0.33 ms, 5.9x / 7.5x / 7.7x unweighted like the NumPy fi
 bar is not met. perf: ~75 % of an unweighted update is HsvBinImage::assign, the colour conversion
 of the region the 30 particle boxes cover, about 5.5 times a box's area (the velocity noise of
 eq. 13 spreads the cloud; 14000 pixels at ~3 ns). Tried: quantising only each row's span of the
-boxes (17 % fewer pixels: not worth it) and an AVX2 quantise_row with gathers (bit-exact, 1.1x on
-this AMD EPYC, whose gathers are slow: dropped).
+boxes (17 % fewer pixels: not worth it), an AVX2 quantise_row with gathers for the division
+tables (bit-exact, 1.1x on this AMD EPYC, whose gathers are slow) and one that does the tables'
+divisions exactly in registers (float quotient corrected by the integer remainder; bit-exact over
+all 2^24 colours, 1.35-1.7x on the conversion but 10 % on a whole update, 116 -> 105 us): both
+dropped. The scoring proper (ColorModel::coefficients with its counting) is the other third.
 
 The NumPy color PF (sigma = 0.2, seed 0) at N = 30 / 90 / 210: 0.64 / 1.36 / 2.75 CPU ms per
 frame, AUC occluded 0.439 / 0.454 / 0.473, clean 0.407 / 0.438 / 0.435. CSRT is the tracker to
