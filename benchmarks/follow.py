@@ -132,7 +132,9 @@ eq. 20 "target" 0.540 / 0.540, eq. 19 "product" 0.533 / 0.541 (15 per part: 0.49
 0.526, -); occlusion_threshold 0, 0.6, 0.75, 0.85 (15 per part, unweighted, seeds 0-2): 0.471 /
 0.476, 0.466 / 0.482, 0.456 / 0.474, 0.470 / 0.479 -- no setting stands out, 0.75 is kept for the
 synthetic scenes, where it judges every hidden frame occluded. The colour PF at N = 60 (0.496 /
-0.529) does not reach the part-based PF at 2 x 30.
+0.529) does not reach the part-based PF at 2 x 30. The colour PF's ess_threshold (seeds 0-4,
+defaults otherwise): 0.2 0.448 / 0.484, 0.5 0.504 / 0.499, 1.0 0.498 / 0.524 -- 0.5 kept (no
+difference in time either).
 
 OpenCV contrib. CSRT and KCF live in opencv-contrib, and opencv-contrib-python-headless ships the
 same top-level module cv2 as the opencv-python-headless the project installs: pip would install
