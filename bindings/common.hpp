@@ -77,5 +77,6 @@ void bind_detections(py::module_& m);
 void bind_tracks(py::module_& m);
 void bind_vehicles(py::module_& m);
 void bind_smc(py::module_& m);
+void bind_follow(py::module_& m);
 
 }  // namespace vtrack::bindings

@@ -59,4 +59,5 @@ PYBIND11_MODULE(_core, m) {
   vtrack::bindings::bind_detections(m);
   vtrack::bindings::bind_vehicles(m);
   vtrack::bindings::bind_smc(m);
+  vtrack::bindings::bind_follow(m);
 }

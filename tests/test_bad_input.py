@@ -120,6 +120,8 @@ CLI_FILE_CASES = (
     + [("track-config", kind) for kind in CONFIGS]
     + [("bgs-config", kind) for kind in CONFIGS]
     + [("params-config", kind) for kind in CONFIGS]
+    + [("follow", kind) for kind in VIDEOS]
+    + [("follow-config", kind) for kind in CONFIGS]
 )
 
 
@@ -145,9 +147,14 @@ def test_cli_bad_files(tmp_path, command, kind):
         "bgs-config": ["bgs", make(tmp_path, ("v.avi", VIDEO)), "--config", bad, "--out",
                        out / "y.avi"],
         "params-config": ["params", "--config", bad],
+        "follow": ["follow", bad, "--init", "1,1,8,8", "--out", out / "t.txt", "--render",
+                   out / "r.avi"],
+        "follow-config": ["follow", make(tmp_path, ("v.avi", VIDEO)), "--init", "1,1,8,8",
+                          "--config", bad, "--out", out / "t.txt"],
     }[command]
     result, left = cli(tmp_path, *args)
-    if kind == "empty" and command in ("track-det", "track-config", "bgs-config", "params-config"):
+    if kind == "empty" and command in ("track-det", "track-config", "bgs-config", "params-config",
+                                       "follow-config"):
         # Valid: a det file without rows tracks nothing, an empty config changes nothing.
         assert result.returncode == 0, result.stderr
         return
@@ -221,6 +228,20 @@ USAGE_CASES = [
     (["params", "--seed", "-5"], "--seed"),
     (["bogus"], "bogus"),
     ([], "no command"),
+    (["follow", "{video}", "--out", "{out}"], "--init"),
+    (["follow", "{video}", "--init", "1,1,4,4"], "--out"),
+    (["follow", "--init", "1,1,4,4", "--out", "{out}"], "VIDEO"),
+    (["follow", "{video}", "--init", "1,1,4", "--out", "{out}"], "--init"),
+    (["follow", "{video}", "--init", "1,1,4,4", "--out", "{out}", "--method", "x"], "method must be one of"),
+    (["follow", "{video}", "--init", "1,1,4,4", "--out", "{out}", "--set", "sigma=nan"], "sigma"),
+    (["follow", "{video}", "--init", "1,1,4,4", "--out", "{out}", "--set", "nosuch=1"], "nosuch"),
+    (["follow", "{video}", "--init", "1,1,4,4", "--out", "{out}", "--particles", "0"], "n_particles"),
+    (["follow", "{video}", "--init", "1,1,4,4", "--out", "{out}", "--first", "0"], "--first"),
+    (["follow", "{video}", "--init", "1,1,4,4", "--out", "{out}", "--first", "3", "--last", "2"],
+     "--last"),
+    (["follow", "{video}", "--init", "1,1,4,4", "--out", "{video}"], "--out"),
+    (["follow", "{video}", "--init", "1,1,4,4", "--out", "{out}", "--render", "{video}"], "--render"),
+    (["follow", "{video}", "--init", "1,1,4,4", "--out", "{out}", "--seed", "-1"], "--seed"),
 ]
 
 
@@ -299,6 +320,8 @@ CLASSES = {
     "GlmbTracker": lambda **kw: vtrack.GlmbTracker(MOTION, OBSERVATION, [], **kw),
     "HogPeopleDetector": lambda **kw: vtrack.HogPeopleDetector(**kw),
     "DepthLikelihood": lambda **kw: vtrack.models.DepthLikelihood(64, 48, 50.0, **kw),
+    "ColorParticleTracker": lambda **kw: vtrack.ColorParticleTracker(**kw),
+    "PartParticleTracker": lambda **kw: vtrack.PartParticleTracker(**kw),
 }
 DEFAULTS = {
     "KdeBackground": vtrack.KdeBackground.default_params(),
@@ -307,6 +330,8 @@ DEFAULTS = {
     "GlmbTracker": vtrack.GlmbTracker.default_params(),
     "HogPeopleDetector": vtrack.HogPeopleDetector.default_params(),
     "DepthLikelihood": vtrack.models.DepthLikelihood.default_params(),
+    "ColorParticleTracker": vtrack.ColorParticleTracker.default_params(),
+    "PartParticleTracker": vtrack.PartParticleTracker.default_params(),
 }
 # Always refused: NaN (no parameter means anything by it), a string, None, and (for an integer
 # parameter) an int beyond its type. Refused or accepted (some parameters are documented to take
@@ -360,6 +385,11 @@ _kde = vtrack.KdeBackground()
 _hog = vtrack.HogPeopleDetector()
 _ii = vtrack.image.IntegralImage(np.ones((8, 8), np.float32))
 _depth = vtrack.models.DepthLikelihood(64, 48, 50.0)
+_frame = np.random.default_rng(0).integers(1, 255, (48, 64, 3), dtype=np.uint8)
+_color = vtrack.ColorParticleTracker()
+_color.init(_frame, (10, 10, 20, 20))
+_parts = vtrack.PartParticleTracker()
+_parts.init(_frame, (10, 10, 20, 20))
 ARRAY_TAKERS = {
     "BoxTracker.step": _box.step,
     "MultiBernoulliTracker.step": _mb.step,
@@ -389,6 +419,13 @@ ARRAY_TAKERS = {
     "ospa2": lambda a: vtrack.metrics.ospa2(a, a, 5.0),
     "track_detections": lambda a: vtrack.track_detections(a),
     "write_mot": lambda a: vtrack.io.write_mot(os.devnull, a),
+    "ColorParticleTracker.init": lambda a: vtrack.ColorParticleTracker().init(a, (0, 0, 4, 4)),
+    "ColorParticleTracker.init-box": lambda a: vtrack.ColorParticleTracker().init(_frame, a),
+    "ColorParticleTracker.update": _color.update,
+    "PartParticleTracker.init": lambda a: vtrack.PartParticleTracker().init(a, (0, 0, 4, 4)),
+    "PartParticleTracker.init-box": lambda a: vtrack.PartParticleTracker().init(_frame, a),
+    "PartParticleTracker.update": _parts.update,
+    "PartParticleTracker-parts": lambda a: vtrack.PartParticleTracker(parts=a),
 }
 # Inputs some functions accept by definition: NaN rows are "absent" in ospa2 tracks and NaN
 # depth is "no reading"; inf weights/costs have meanings in the log domain and in assignment.

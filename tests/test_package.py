@@ -108,7 +108,8 @@ def test_stub_signatures_match_the_compiled_ones(owner, name, node):
 
 COMPONENTS = [vtrack.KdeBackground, vtrack.MultiBernoulliTracker, vtrack.BoxTracker,
               vtrack.GlmbTracker, vtrack.HogPeopleDetector, vtrack.models.DepthLikelihood,
-              vtrack.smc.ParticleFilter, vtrack.smc.MCMCParticleFilter]
+              vtrack.smc.ParticleFilter, vtrack.smc.MCMCParticleFilter,
+              vtrack.ColorParticleTracker, vtrack.PartParticleTracker]
 
 
 def test_every_component_has_the_same_parameter_surface():
@@ -136,7 +137,7 @@ def test_public_api_is_exported_and_documented():
     # Every compiled name is reachable from a public module.
     public = {n for m in SUBMODULES for n in getattr(__import__(f"vtrack.{m}", fromlist=["_"]),
                                                       "__all__", [])} | set(vtrack.__all__)
-    internal = {"track_video", "track_detections"}  # wrapped by vtrack.pipelines
+    internal = {"track_video", "track_detections", "follow_video"}  # wrapped by vtrack.pipelines
     missing = {n for n in dir(_core) if not n.startswith("_")} - public - internal
     assert not missing, missing
     assert (Path(vtrack.__file__).parent / "py.typed").exists()

@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include <filesystem>
@@ -22,6 +23,7 @@
 #include "signals.hpp"
 #include "vtrack/apps/background_subtraction.hpp"
 #include "vtrack/apps/config.hpp"
+#include "vtrack/apps/follow.hpp"
 #include "vtrack/apps/mot_files.hpp"
 #include "vtrack/apps/output_paths.hpp"
 #include "vtrack/apps/pipeline.hpp"
@@ -434,6 +436,75 @@ int run_track(const std::vector<std::string>& args) {
   return 0;
 }
 
+// "x,y,w,h" as four numbers.
+vtrack::filters::Box parse_box(const std::string& text) {
+  const auto value = vtrack::core::parse_parameter_text(text);
+  const auto* reals = std::get_if<std::vector<double>>(&value);
+  if (!reals || reals->size() != 4) throw UsageError("--init expects x,y,w,h, got '" + text + "'");
+  return {(*reals)[0], (*reals)[1], (*reals)[2], (*reals)[3]};
+}
+
+int run_follow(const std::vector<std::string>& args) {
+  std::string output, render, config, init, first = "1", last = "0", particles;
+  vtrack::apps::FollowParams params;
+  std::vector<std::string> settings;
+  std::optional<std::uint64_t> seed;
+  const std::string input = walk_arguments("follow", args, [&](const std::string& a, const std::string& value) {
+    if (a == "--out") output = value;
+    else if (a == "--render") render = value;
+    else if (a == "--config") config = value;
+    else if (a == "--init") init = value;
+    else if (a == "--first") first = value;
+    else if (a == "--last") last = value;
+    else if (a == "--method") params.method = value;
+    else if (a == "--particles") particles = value;
+    else if (a == "--seed") seed = parse_seed(value);
+    else if (a == "--set") settings.push_back(value);
+    else throw UsageError("unknown option '" + a + "'");
+  });
+  if (input.empty()) throw UsageError("follow needs a VIDEO");
+  if (init.empty()) throw UsageError("follow needs --init x,y,w,h (the object's box on --first)");
+  if (output.empty()) throw UsageError("follow needs --out TRACK (frame,x,y,w,h text)");
+  if (!render.empty() && !vtrack::apps::is_video_output(render)) {
+    throw UsageError("--render must name a .avi, .mp4 or .mkv file, got '" + render + "'");
+  }
+  const vtrack::filters::Box box = parse_box(init);
+  const long long first_frame = parse_int("--first", first);
+  const long long last_frame = parse_int("--last", last);
+  as_usage([&] { vtrack::apps::validate(params); });  // the method's name
+  check_outputs({{"VIDEO", input}, {"--config", config}}, {{"--out", output}, {"--render", render}});
+  if (!config.empty()) vtrack::apps::apply_follow_config(params, vtrack::apps::read_config(config));
+  as_usage([&] {
+    if (!particles.empty()) {
+      vtrack::apps::set_follow_parameter(params, "n_particles",
+                                         vtrack::core::parse_parameter_text(particles));
+    }
+    if (seed) vtrack::apps::set_follow_parameter(params, "seed", *seed);
+    for (const auto& setting : settings) {
+      const auto [name, value] = vtrack::core::parse_setting(setting);
+      vtrack::apps::set_follow_parameter(params, name, value);
+    }
+    vtrack::apps::validate(params);
+    if (first_frame < 1) throw vtrack::InvalidArgument("--first must be >= 1, got " + first);
+    if (last_frame != 0 && last_frame < first_frame) {
+      throw vtrack::InvalidArgument("--last must be >= --first, got " + last);
+    }
+  });
+  ProgressLine progress("follow");
+  const auto rows = vtrack::apps::follow_video(input, box, params, first_frame, last_frame, render,
+                                               progress.callback());
+  progress.finish();
+  CompletedOutputs completed;  // a failed write of the track removes the render
+  if (!render.empty()) completed.paths.push_back(render);
+  vtrack::apps::write_follow(output, rows);
+  completed.keep = true;
+  std::cout << "wrote " << rows.size() << " frames of the " << params.method << " tracker to "
+            << output;
+  if (!render.empty()) std::cout << ", the annotated video to " << render;
+  std::cout << "\n";
+  return 0;
+}
+
 // `vtrack batch` is Python (vtrack.batch, on Dask): this execs the interpreter vtrack is
 // installed in and returns only when there is none.
 int run_batch(const std::vector<std::string>& args) {
@@ -487,6 +558,27 @@ const std::vector<Command>& commands() {
        "  --set name=value one parameter of any of the method's sections (repeatable); lists\n"
        "                   as a,b,c",
        run_track},
+      {"follow",
+       "follow one object from a box: colour or part-based particle filter (OpenCV-tracker-like)",
+       "vtrack follow VIDEO --init x,y,w,h --out TRACK [--first N] [--last M]\n"
+       "                    [--method color|parts] [--particles N] [--render OUT.mp4]\n"
+       "                    [--config FILE] [--seed N] [--set name=value ...]\n\n"
+       "  VIDEO            a video file or a folder of images\n"
+       "  --init x,y,w,h   the object's box on frame --first (inside the image)\n"
+       "  --first N        the frame of the init box, from 1 in the video's numbering (default 1)\n"
+       "  --last M         the last frame to follow (default: the end)\n"
+       "  --out TRACK      text, frame,x,y,w,h per line from --first on (x,y,w,h = nan where the\n"
+       "                   target is lost); written only when following succeeded\n"
+       "  --method color   the colour-histogram particle filter (default; N = 30)\n"
+       "  --method parts   the part-based particle filter on a graphical model (2 parts, N = 15\n"
+       "                   per part; --set parts=3 for a face)\n"
+       "  --particles N    particles (per part for parts)\n"
+       "  --render FILE    also write the video with the box (parts: each part, red if occluded)\n"
+       "  --config FILE    YAML or JSON with a section tracker (vtrack.ColorParticleTracker or\n"
+       "                   vtrack.PartParticleTracker.default_params()) and a top-level seed\n"
+       "  --seed N         0 to 2^64-1 (default 0): the same seed gives the same track\n"
+       "  --set name=value one parameter of the tracker (repeatable)",
+       run_follow},
       {"params", "print the parameters a track run would use, as JSON config sections",
        "vtrack params [--method mb|glmb] [--detector hog] [--config FILE] [--seed N]\n"
        "              [--set name=value ...]\n\n"

@@ -8,8 +8,11 @@ model, plus a box tracker for any detector's output, and generic SIR / MCMC part
 The main entry points are here; the rest lives in submodules that mirror the C++ layers:
 
 ============================  =========================================================
-``vtrack.pipelines``          :func:`track_video`, :func:`track_detections` (also here)
-``vtrack.trackers``           ``MultiBernoulliTracker``, ``GlmbTracker``, ``BoxTracker``, ``Tracks``
+``vtrack.pipelines``          :func:`track_video`, :func:`track_detections`, :func:`follow`
+                              (also here)
+``vtrack.trackers``           ``MultiBernoulliTracker``, ``GlmbTracker``, ``BoxTracker``, ``Tracks``;
+                              single-object ``ColorParticleTracker``, ``PartParticleTracker``
+                              (also here)
 ``vtrack.image``              ``KdeBackground``, morphology, integral images, color histograms
 ``vtrack.detectors``          ``HogPeopleDetector``
 ``vtrack.models``             motion / observation models, the depth likelihood
@@ -40,6 +43,7 @@ NumPy arrays go in and out without copies where the layout allows; wrong dtypes 
 
 from ._core import (
     BoxTracker,
+    ColorParticleTracker,
     Gaussian,
     GlmbTracker,
     HogPeopleDetector,
@@ -52,6 +56,7 @@ from ._core import (
     MCMCParticleFilter,
     MultiBernoulliTracker,
     ParticleFilter,
+    PartParticleTracker,
     Rng,
     Tracks,
     __version__,
@@ -59,10 +64,11 @@ from ._core import (
 from . import assign, detectors, image, io, metrics, models, pipelines, smc, trackers  # noqa: E402
 from . import detsim, rgbd, scenarios, synthetic, synthetic_occlusion, synthetic_road, vehicles  # noqa: E402,E501
 from .io import load_config  # noqa: E402
-from .pipelines import track_detections, track_video  # noqa: E402
+from .pipelines import follow, track_detections, track_video  # noqa: E402
 
 __all__ = [
     "BoxTracker",
+    "ColorParticleTracker",
     "Gaussian",
     "GlmbTracker",
     "HogPeopleDetector",
@@ -75,12 +81,14 @@ __all__ = [
     "MCMCParticleFilter",
     "MultiBernoulliTracker",
     "ParticleFilter",
+    "PartParticleTracker",
     "Rng",
     "Tracks",
     "__version__",
     "assign",
     "detectors",
     "detsim",
+    "follow",
     "image",
     "io",
     "load_config",

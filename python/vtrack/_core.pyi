@@ -785,3 +785,108 @@ class MCMCParticleFilter:
     def params(self) -> Dict[str, Any]: ...
     @staticmethod
     def default_params() -> Dict[str, Any]: ...
+
+class ColorParticleTracker:
+    """Colour-histogram particle filter (part-based-graphical-model-pf sections 2-3.2), OpenCV-like."""
+
+    def __init__(
+        self,
+        *,
+        n_particles: int = 30,
+        ess_threshold: float = 0.5,
+        resampling: str = "systematic",
+        seed: int = 0,
+        sigma: float = 0.2,
+        noise: Tuple[float, float, float, float] = (0.08, 0.03, 0.002, 0.002),
+        min_scale: float = 0.8,
+        max_scale: float = 1.25,
+        min_size: float = 2.0,
+        bins_h: int = 16,
+        bins_s: int = 4,
+        bins_v: int = 4,
+        kernel: bool = True,
+        template_update: float = 0.0,
+        occlusion_threshold: float = 0.75,
+        lost_threshold: float = 0.3,
+    ) -> None: ...
+    def init(self, frame: npt.NDArray[np.uint8], box: Sequence[float]) -> None: ...
+    def update(
+        self, frame: npt.NDArray[np.uint8]
+    ) -> Tuple[bool, Tuple[float, float, float, float]]: ...
+    @property
+    def box(self) -> Tuple[float, float, float, float]: ...
+    @property
+    def particles(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def weights(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def coefficient(self) -> float: ...
+    @property
+    def occluded(self) -> bool: ...
+    @property
+    def initialized(self) -> bool: ...
+    @property
+    def params(self) -> Dict[str, Any]: ...
+    @staticmethod
+    def default_params() -> Dict[str, Any]: ...
+
+class PartParticleTracker:
+    """Part-based particle filter on a graphical model (part-based-graphical-model-pf eqs. 14-30)."""
+
+    def __init__(
+        self,
+        *,
+        edges: Optional[Sequence[Tuple[int, int]]] = None,
+        parts: Union[int, Sequence[Sequence[float]]] = 2,
+        n_particles: int = 15,
+        resampling: str = "multinomial",
+        message_weight: str = "neighbour",
+        seed: int = 0,
+        sigma: float = 0.2,
+        noise: Tuple[float, float, float, float] = (0.08, 0.03, 0.002, 0.002),
+        min_scale: float = 0.8,
+        max_scale: float = 1.25,
+        min_size: float = 2.0,
+        bins_h: int = 16,
+        bins_s: int = 4,
+        bins_v: int = 4,
+        kernel: bool = True,
+        template_update: float = 0.0,
+        occlusion_threshold: float = 0.75,
+        lost_threshold: float = 0.3,
+    ) -> None: ...
+    def init(self, frame: npt.NDArray[np.uint8], box: Sequence[float]) -> None: ...
+    def update(
+        self, frame: npt.NDArray[np.uint8]
+    ) -> Tuple[bool, Tuple[float, float, float, float]]: ...
+    @property
+    def box(self) -> Tuple[float, float, float, float]: ...
+    @property
+    def parts(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def occluded(self) -> npt.NDArray[np.bool_]: ...
+    @property
+    def coefficients(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def particles(self) -> List[npt.NDArray[np.float64]]: ...
+    @property
+    def weights(self) -> List[npt.NDArray[np.float64]]: ...
+    @property
+    def edges(self) -> List[Tuple[int, int]]: ...
+    @property
+    def initialized(self) -> bool: ...
+    @property
+    def params(self) -> Dict[str, Any]: ...
+    @staticmethod
+    def default_params() -> Dict[str, Any]: ...
+
+def follow_video(
+    video: Union[str, PathLike[str]],
+    init_box: Sequence[float],
+    method: str,
+    first: int,
+    last: Optional[int],
+    render: Optional[Union[str, PathLike[str]]],
+    params: Dict[str, Any],
+    progress: Optional[Callable[[int, int], None]],
+) -> npt.NDArray[np.float64]: ...

@@ -29,7 +29,7 @@ Progress = Union[bool, Callable[[int, int], None], None]
 
 METHODS = ("mb", "glmb")
 
-__all__ = ["METHODS", "pipeline_params", "track_detections", "track_video"]
+__all__ = ["METHODS", "follow", "pipeline_params", "track_detections", "track_video"]
 
 
 class _ProgressLine:
@@ -145,6 +145,43 @@ def track_video(video: PathLike, method: str = "mb", *, detector: Optional[str] 
     finally:
         close()
     return (rows, detections) if return_detections else rows
+
+
+def follow(video: PathLike, init_box: Sequence[float], method: str = "color", first: int = 1,
+           last: Optional[int] = None, render: Optional[PathLike] = None, *,
+           config: Union[None, PathLike, Mapping[str, Any]] = None, progress: Progress = False,
+           **params: Any) -> np.ndarray:
+    """Follow one object through a video from its box -- ``vtrack follow`` (the same arguments
+    give the same rows).
+
+    init_box: (x, y, w, h) of the object on frame ``first`` (1-based, the video's numbering),
+    inside the image. method: ``"color"`` (:class:`vtrack.ColorParticleTracker`, the conventional
+    colour-histogram particle filter) or ``"parts"`` (:class:`vtrack.PartParticleTracker`, the
+    part-based particle filter on a graphical model); part-based-graphical-model-pf.txt. last: the
+    last frame (default: the end). render: also write the video with the box (and each part's, red
+    when judged occluded). config: a file or dict whose ``tracker`` section (and top-level seed)
+    applies; params: the tracker's keyword parameters (``n_particles``, ``seed``, ``sigma``, ...;
+    its ``default_params()``). progress: True for a progress bar, or a callable(done, total).
+
+    Returns an (N, 5) float64 array frame, x, y, w, h from ``first`` on, the first row the init
+    box; x, y, w, h are NaN where the tracker reported the target lost (``ok = False``).
+    ValueError for a box that leaves the image or has no area, ``first`` past the end, ``last`` <
+    ``first``; OSError for an unreadable video.
+    """
+    sections = _config_sections(config)
+    unknown = set(sections) - {"seed", "tracker"}
+    if unknown:
+        raise ValueError(f"config: follow reads the sections seed and tracker, got {sorted(unknown)}")
+    merged: Dict[str, Any] = dict(sections.get("tracker", {}))
+    if "seed" in sections:
+        merged["seed"] = sections["seed"]
+    merged.update(params)
+    callback, close = _reporter(progress, "follow")
+    try:
+        return _core.follow_video(video, init_box, method, first, last,
+                                  None if render is None else render, merged, callback)
+    finally:
+        close()
 
 
 def track_detections(detections: Union[PathLike, np.ndarray], image_size: Optional[Tuple[int, int]] = None,

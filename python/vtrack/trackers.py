@@ -14,8 +14,22 @@ MultiBernoulliTracker      ``(image_size, **params)``                       ``y`
 BoxTracker                 ``(image_size, **params)``                       ``boxes`` (M x 4 or 5)
 GlmbTracker                ``(motion, observation, births, **params)``      ``detections`` (M x z)
 =========================  ===============================================  =====================
+
+Single-object trackers initialised with a box, in the shape of OpenCV's tracker API
+(``t.init(frame, box)``, ``ok, box = t.update(frame)``): ``ColorParticleTracker`` (the colour-
+histogram particle filter) and ``PartParticleTracker`` (the part-based particle filter on a
+graphical model), part-based-graphical-model-pf.txt; ``vtrack.follow`` runs them on a video.
 """
 
-from ._core import BernoulliComponent, BoxTracker, GlmbTracker, MultiBernoulliTracker, Tracks
+from ._core import (
+    BernoulliComponent,
+    BoxTracker,
+    ColorParticleTracker,
+    GlmbTracker,
+    MultiBernoulliTracker,
+    PartParticleTracker,
+    Tracks,
+)
 
-__all__ = ["BernoulliComponent", "BoxTracker", "GlmbTracker", "MultiBernoulliTracker", "Tracks"]
+__all__ = ["BernoulliComponent", "BoxTracker", "ColorParticleTracker", "GlmbTracker",
+           "MultiBernoulliTracker", "PartParticleTracker", "Tracks"]

@@ -303,6 +303,16 @@ void quantise_row(const unsigned char* __restrict bgr, int n, const ColorHistogr
 
 }  // namespace
 
+const core::ParameterTable<ColorHistogramParams>& ColorHistogramParams::table() {
+  using P = ColorHistogramParams;
+  static const auto t = core::ParameterTable<P>()
+                            .add("bins_h", &P::bins_h)
+                            .add("bins_s", &P::bins_s)
+                            .add("bins_v", &P::bins_v)
+                            .add("kernel", &P::kernel);
+  return t;
+}
+
 void validate(const ColorHistogramParams& p) {
   require(p.bins_h >= 1 && p.bins_h <= 256, "bins_h", p.bins_h, "in [1, 256]");
   require(p.bins_s >= 1 && p.bins_s <= 256, "bins_s", p.bins_s, "in [1, 256]");

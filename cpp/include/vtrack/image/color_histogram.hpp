@@ -44,6 +44,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "vtrack/core/parameters.hpp"
 #include "vtrack/image/integral_image.hpp"
 
 namespace vtrack::image {
@@ -58,6 +59,10 @@ struct ColorHistogramParams {
   // counts 1. Section 3.1's "color histograms of positional information" may mean this weighting
   // (its ref. [14] uses it); the filters' benchmarks are to say which tracks better.
   bool kernel = false;
+
+  // Names for config files and Python keywords (core/parameters.hpp): bins_h, bins_s, bins_v,
+  // kernel; defined in color_histogram.cpp.
+  static const core::ParameterTable<ColorHistogramParams>& table();
 };
 
 // Throws InvalidArgument naming the parameter when a bin count is outside [1, 256].
