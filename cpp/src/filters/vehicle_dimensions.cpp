@@ -6,6 +6,7 @@
 #include <string>
 
 #include "vtrack/core/errors.hpp"
+#include "vtrack/core/limits.hpp"
 #include "vtrack/smc/mh.hpp"
 
 namespace vtrack::filters {
@@ -245,7 +246,8 @@ const core::ParameterTable<VehicleEstimatorParams>& VehicleEstimatorParams::tabl
 }
 
 void validate(const VehicleEstimatorParams& p) {
-  require(p.n_particles >= 1, "n_particles", p.n_particles, ">= 1");
+  require(p.n_particles >= 1 && p.n_particles <= core::kMaxParticles, "n_particles", p.n_particles,
+          "in [1, 1000000]");
   require(p.burn_in >= 0, "burn_in", p.burn_in, ">= 0");
   require(p.thinning >= 1, "thinning", p.thinning, ">= 1");
   require(p.proposal_scale > 0.0 && std::isfinite(p.proposal_scale), "proposal_scale", p.proposal_scale,
@@ -387,6 +389,11 @@ bool VehicleDimensionEstimator::update_box(int vehicle_id, int frame, double x, 
   corners << x, x + w, y, y + h;
   Track& t = track(vehicle_id, frame);
   return !touches_border(corners) && add(t, obs);
+}
+
+int VehicleDimensionEstimator::next_frame(int vehicle_id) const {
+  const auto it = tracks_.find(vehicle_id);
+  return it == tracks_.end() ? 1 : it->second.last_frame + 1;
 }
 
 const VehiclePosterior* VehicleDimensionEstimator::posterior(int vehicle_id) const {

@@ -151,6 +151,8 @@ class VehicleDimensionEstimator {
   bool update_polygon(int vehicle_id, int frame, const Eigen::Ref<const Eigen::Matrix2Xd>& polygon);
   bool update_box(int vehicle_id, int frame, double x, double y, double w, double h);
 
+  // The frame after the vehicle's last (1 for a new vehicle), for callers that number frames per vehicle.
+  int next_frame(int vehicle_id) const;
   VehicleEstimate estimate(int vehicle_id) const;  // InvalidArgument for an unknown id
   std::vector<VehicleEstimate> estimates() const;  // every vehicle, by id
   // The last used frame's posterior (nullptr before any used frame).
