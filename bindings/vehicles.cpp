@@ -12,8 +12,10 @@
 #include "common.hpp"
 #include "params.hpp"
 #include "guard.hpp"
+#include "tracks.hpp"
 #include "vtrack/apps/output_paths.hpp"
 #include "vtrack/apps/vehicles.hpp"
+#include "vtrack/apps/video_writer.hpp"
 #include "vtrack/filters/vehicle_dimensions.hpp"
 #include "vtrack/models/camera.hpp"
 #include "vtrack/models/vehicle_observation.hpp"
@@ -433,8 +435,8 @@ sampler "ray" (§3.3's samples on the ray), "mh" (MH in W-H-L space), "discrete"
 class models) or "rays" (beyond the paper: the exact rigid posterior given every frame's ray);
 reference "map" | "mean" | "random" (x*) | "all" (the full acceptance ratio); n_particles,
 burn_in, thinning; proposal_scale and dynamic_sigma (metres); min_size (W, H, L); sigma_w,
-sigma_h, sigma_l (S of §3.1) and max_edge_px; light_heavy_rule "class" | "volume" with
-heavy_volume (m^3); decision "mean" (over the frames used) | "last"; border_margin_px; seed.
+sigma_h, sigma_l (S of §3.1) and max_edge_px; light_heavy_rule "volume" (W H L >=
+heavy_volume m^3) | "class" (the MAP class's heavy flag); decision "mean" (over the frames used) | "last"; border_margin_px; seed.
 
 update(vehicle_id, silhouette, frame=None) takes an image polygon (N, 2) or box (x, y, w, h) and
 returns whether the frame was used (not cut by the image border, a feasible ray); frame defaults
@@ -512,6 +514,83 @@ vehicles are updated.
       "The compiled half of vtrack.vehicles.estimate_vehicles (use that).");
 }
 
+// Sets `name` in the table of `params` when it has it.
+template <class Params>
+bool set_in(Params& params, const std::string& name, const py::handle& value) {
+  const auto* e = Params::table().find(name);
+  if (e == nullptr) return false;
+  e->set(params, parameter_from_python(name, e->kind, e->size, value));
+  return true;
+}
+
+// The video pipeline's parameters: config sections {"seed", "background", "blobs", "estimator"}
+// (what vtrack.load_config returns), then keywords of any section.
+apps::VehiclePipelineParams vehicle_pipeline_params(const py::dict& config, const py::dict& params) {
+  apps::VehiclePipelineParams p;
+  auto set = [&p](const std::string& section, const std::string& name, const py::handle& value) {
+    const bool any = section.empty();
+    if ((any || section == "estimator") && set_in(p.estimator, name, value)) return;
+    if ((any || section == "blobs") && set_in(p.blobs, name, value)) return;
+    if ((any || section == "background") && set_in(p.background, name, value)) return;
+    std::vector<std::string> names;
+    if (any || section == "estimator") names = filters::VehicleEstimatorParams::table().names();
+    if (any || section == "blobs") for (const auto& n : apps::VehicleBlobParams::table().names()) names.push_back(n);
+    if (any || section == "background") for (const auto& n : image::KdeBackgroundParams::table().names()) names.push_back(n);
+    throw_unknown_keyword(name, any ? "vehicles" : section, names);
+  };
+  for (const auto& item : config) {
+    const std::string section = py::str(item.first).cast<std::string>();
+    if (section == "seed") {
+      set("estimator", "seed", item.second);
+      continue;
+    }
+    if (section != "background" && section != "blobs" && section != "estimator") {
+      throw py::value_error("config: vehicles has the sections background, blobs and estimator, got '" + section + "'");
+    }
+    if (!py::isinstance<py::dict>(item.second)) throw py::type_error("config section '" + section + "' must be a dict");
+    for (const auto& entry : item.second.cast<py::dict>()) set(section, py::str(entry.first).cast<std::string>(), entry.second);
+  }
+  for (const auto& item : params) set("", py::str(item.first).cast<std::string>(), item.second);
+  apps::validate(p);
+  return p;
+}
+
+void bind_pipeline(py::module_& m) {
+  m.def(
+      "_measure_vehicles",
+      [](const py::handle& video_arg, const Camera& camera, const py::handle& models, const py::dict& config,
+         const py::dict& params, const py::handle& render_arg, const py::handle& out_arg, const py::handle& tracks_arg,
+         const py::object& progress) {
+        const std::string video = path_arg(video_arg, "video");
+        const std::string render = render_arg.is_none() ? "" : path_arg(render_arg, "render");
+        const std::string out = out_arg.is_none() ? "" : path_arg(out_arg, "out");
+        const std::string tracks = tracks_arg.is_none() ? "" : path_arg(tracks_arg, "tracks");
+        if (!render.empty() && !apps::is_video_output(render)) {
+          throw py::value_error("render must name a .avi, .mp4 or .mkv file, got '" + render + "'");
+        }
+        const auto p = vehicle_pipeline_params(config, params);
+        auto list = models_arg(models);
+        const apps::FrameProgress report = progress_callback(progress);
+        apps::VehiclePipelineResult result;
+        {
+          PythonInterrupts interrupts;
+          py::gil_scoped_release release;
+          std::vector<apps::NamedPath> outputs;
+          for (const auto& [name, path] : {std::pair{"out", out}, {"tracks", tracks}, {"render", render}}) {
+            if (!path.empty()) outputs.push_back({name, path});
+          }
+          apps::check_outputs({{"video", video}}, outputs);
+          result = apps::measure_vehicles(video, camera, std::move(list), p, render, report);
+          if (!out.empty()) apps::write_vehicles_csv(out, result.vehicles);
+          if (!tracks.empty()) apps::write_mot(tracks, result.tracks);
+        }
+        return py::make_tuple(estimates_list(result.vehicles), track_rows(result.tracks), result.frames);
+      },
+      py::arg("video"), py::arg("camera"), py::arg("models"), py::arg("config"), py::arg("params"),
+      py::arg("render"), py::arg("out"), py::arg("tracks"), py::arg("progress"),
+      "The compiled half of vtrack.vehicles.measure_vehicles (use that).");
+}
+
 }  // namespace
 
 void bind_vehicles(py::module_& m) {
@@ -519,6 +598,7 @@ void bind_vehicles(py::module_& m) {
   bind_observation(m);
   bind_prior(m);
   bind_estimator(m);
+  bind_pipeline(m);
 }
 
 }  // namespace vtrack::bindings

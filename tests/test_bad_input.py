@@ -153,6 +153,7 @@ CLI_FILE_CASES = (
     + [("bgs-config", kind) for kind in CONFIGS]
     + [("params-config", kind) for kind in CONFIGS]
     + [("vehicles-obs", kind) for kind in OBSERVATIONS]
+    + [("vehicles-video", kind) for kind in VIDEOS]
     + [("vehicles-camera", kind) for kind in CAMERAS]
     + [("vehicles-config", kind) for kind in CONFIGS]
 )
@@ -163,6 +164,8 @@ def test_cli_bad_files(tmp_path, command, kind):
     out = tmp_path / "out"
     if command.endswith("config"):
         spec = CONFIGS[kind]
+    elif command == "vehicles-video":
+        spec = VIDEOS[kind]
     elif command == "vehicles-obs":
         spec = OBSERVATIONS[kind]
     elif command == "vehicles-camera":
@@ -186,6 +189,8 @@ def test_cli_bad_files(tmp_path, command, kind):
         "params-config": ["params", "--config", bad],
         "vehicles-obs": ["vehicles", "--observations", bad, "--camera", make(tmp_path, ("cam.json", CAMERA_JSON)),
                          "--out", out / "v.csv"],
+        "vehicles-video": ["vehicles", bad, "--camera", make(tmp_path, ("cam.json", CAMERA_JSON)), "--out",
+                           out / "v.csv", "--tracks", out / "t.txt", "--render", out / "r.avi"],
         "vehicles-camera": ["vehicles", "--observations", make(tmp_path, ("obs.csv", GOOD_OBS)), "--camera", bad,
                             "--out", out / "v.csv"],
         "vehicles-config": ["vehicles", "--observations", make(tmp_path, ("obs.csv", GOOD_OBS)), "--camera",
@@ -281,6 +286,11 @@ USAGE_CASES = [
      "sigma_w"),
     (["vehicles", "--observations", "{obs}", "--camera", "{cam}", "--out", "{out}", "--seed", "-1"], "--seed"),
     (["vehicles", "--observations", "{obs}", "--camera", "{cam}", "--out", "{out}", "--bogus", "1"], "--bogus"),
+    (["vehicles", "{video}", "--observations", "{obs}", "--camera", "{cam}", "--out", "{out}"], "either"),
+    (["vehicles", "{video}", "--camera", "{cam}", "--out", "{out}", "--render", "{out_dir}/r.txt"], "--render"),
+    (["vehicles", "{video}", "--camera", "{cam}", "--out", "{out}", "--tracks", "{video}"], "--tracks"),
+    (["vehicles", "{video}", "--camera", "{cam}", "--out", "{out}", "--set", "min_area=0"], "min_area"),
+    (["vehicles", "{video}", "--camera", "{cam}", "--out", "{out}", "--set", "blob_closing=4"], "blob_closing"),
     (["bogus"], "bogus"),
     ([], "no command"),
 ]
@@ -318,6 +328,7 @@ READERS = {
     "read_vehicle_models_file": (vtrack.vehicles.read_vehicle_models_file, FILES),
     "read_camera_file_contents": (vtrack.vehicles.read_camera_file, CAMERA_CONTENTS),
     "estimate_vehicles": (lambda p: vtrack.vehicles.estimate_vehicles(p, _CAMERA), OBSERVATIONS),
+    "measure_vehicles": (lambda p: vtrack.vehicles.measure_vehicles(p, _CAMERA), VIDEOS),
 }
 READER_CASES = [(r, k) for r, (_, kinds) in READERS.items() for k in kinds]
 # Contents a reader accepts as valid (empty det/MOT files are no rows; a config may be empty; a
@@ -329,6 +340,7 @@ ACCEPTED = {
     ("load_config", "unknown_section"), ("load_config", "unknown_name"), ("load_config", "wrong_kind"),
     ("load_config", "int_overflow"), ("load_config", "nan"), ("load_config", "negative"),
     ("probe_video", "truncated"), ("track_video", "truncated"), ("estimate_vehicles", "empty"),
+    ("measure_vehicles", "truncated"),
 }
 
 
@@ -341,6 +353,7 @@ def test_python_readers(tmp_path, reader, kind):
             function(path)
         except (OSError, ValueError) as e:  # a truncated video may fail at the cut: named
             assert (reader, kind) in {("probe_video", "truncated"), ("track_video", "truncated"),
+                                      ("measure_vehicles", "truncated"),
                                       ("read_mot", "too_few_fields")}, e
             assert "frame" in str(e) or path.name in str(e), e
         return

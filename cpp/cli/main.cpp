@@ -442,28 +442,21 @@ struct VehicleOptions {
   std::optional<std::uint64_t> seed;
 };
 
-// The estimator's parameters from --config (section estimator, top-level seed), --seed and --set.
-vtrack::filters::VehicleEstimatorParams vehicle_params(const VehicleOptions& o) {
-  vtrack::filters::VehicleEstimatorParams params;
+// The pipeline's parameters from --config (sections background, blobs, estimator; top-level
+// seed), --seed and --set (in that order of precedence, lowest first).
+vtrack::apps::VehiclePipelineParams vehicle_params(const VehicleOptions& o) {
+  vtrack::apps::VehiclePipelineParams params;
   if (!o.config.empty()) {
-    const auto file = vtrack::apps::read_config(o.config);
-    for (const auto& [section, values] : file.sections) {
-      if (section != "estimator") {
-        throw vtrack::InvalidArgument("config file '" + o.config + "': vehicles --observations reads only the "
-                                      "section estimator, got '" + section + "'");
-      }
-    }
-    if (file.seed) params.seed = *file.seed;
-    vtrack::core::set_parameters(params, file.section("estimator"), "estimator");
-    vtrack::filters::validate(params);  // a value out of range in the file is bad data (exit 1)
+    vtrack::apps::apply_vehicle_config(params, vtrack::apps::read_config(o.config));
+    vtrack::apps::validate(params);  // a value out of range in the file is bad data (exit 1)
   }
   as_usage([&] {
-    if (o.seed) params.seed = *o.seed;
+    if (o.seed) params.estimator.seed = *o.seed;
     for (const auto& setting : o.settings) {
       const auto [name, value] = vtrack::core::parse_setting(setting);
-      vtrack::core::set_parameters(params, {{name, value}}, "estimator");
+      vtrack::apps::set_vehicle_parameter(params, name, value);
     }
-    vtrack::filters::validate(params);
+    vtrack::apps::validate(params);
   });
   return params;
 }
@@ -484,25 +477,44 @@ int run_vehicles(const std::vector<std::string>& args) {
   });
   if (o.camera.empty()) throw UsageError("vehicles needs --camera CAMERA (a JSON or YAML camera file)");
   if (o.output.empty()) throw UsageError("vehicles needs --out VEHICLES (a CSV file)");
-  if (o.observations.empty()) {
-    throw UsageError(o.input.empty() ? "vehicles needs --observations OBS"
-                                     : "vehicles from a VIDEO is not implemented yet: give --observations OBS");
+  if (o.observations.empty() && o.input.empty()) throw UsageError("vehicles needs a VIDEO or --observations OBS");
+  if (!o.observations.empty() && !o.input.empty()) throw UsageError("give either a VIDEO or --observations, not both");
+  if (!o.observations.empty()) {
+    for (const auto& [flag, value] : {std::pair{"--tracks", o.tracks}, {"--render", o.render}}) {
+      if (!value.empty()) throw UsageError(std::string(flag) + " needs a VIDEO, not --observations");
+    }
   }
-  if (!o.input.empty()) throw UsageError("give either a VIDEO or --observations, not both");
-  for (const auto& [flag, value] : {std::pair{"--tracks", o.tracks}, {"--render", o.render}}) {
-    if (!value.empty()) throw UsageError(std::string(flag) + " needs a VIDEO, not --observations");
+  if (!o.render.empty() && !vtrack::apps::is_video_output(o.render)) {
+    throw UsageError("--render must name a .avi, .mp4 or .mkv file, got '" + o.render + "'");
   }
-  check_outputs({{"--observations", o.observations}, {"--camera", o.camera}, {"--config", o.config},
-                 {"--models", o.models}},
-                {{"--out", o.output}});
+  check_outputs({{"VIDEO", o.input}, {"--observations", o.observations}, {"--camera", o.camera},
+                 {"--config", o.config}, {"--models", o.models}},
+                {{"--out", o.output}, {"--tracks", o.tracks}, {"--render", o.render}});
   const auto params = vehicle_params(o);
   const auto camera = vtrack::models::read_camera_file(o.camera);
   auto models = o.models.empty() ? std::vector<vtrack::models::VehicleModel>{}
                                  : vtrack::models::read_vehicle_models_file(o.models);
-  vtrack::filters::VehicleDimensionEstimator estimator(camera, std::move(models), params);
-  const auto estimates =
-      vtrack::apps::estimate_vehicles(estimator, vtrack::apps::read_vehicle_observations(o.observations));
-  vtrack::apps::write_vehicles_csv(o.output, estimates);  // only once every vehicle is estimated
+  std::vector<vtrack::filters::VehicleEstimate> estimates;
+  std::vector<vtrack::apps::TrackRow> rows;
+  if (!o.observations.empty()) {
+    vtrack::filters::VehicleDimensionEstimator estimator(camera, std::move(models), params.estimator);
+    estimates = vtrack::apps::estimate_vehicles(estimator, vtrack::apps::read_vehicle_observations(o.observations));
+  } else {
+    ProgressLine progress("vehicles");
+    auto result = vtrack::apps::measure_vehicles(o.input, camera, std::move(models), params, o.render,
+                                                 progress.callback());
+    progress.finish();
+    estimates = std::move(result.vehicles);
+    rows = std::move(result.tracks);
+  }
+  // Written only once every vehicle is estimated; should a later write fail, the outputs already
+  // completed are removed with it.
+  CompletedOutputs completed;
+  if (!o.render.empty()) completed.paths.push_back(o.render);
+  vtrack::apps::write_vehicles_csv(o.output, estimates);
+  completed.paths.push_back(o.output);
+  if (!o.tracks.empty()) vtrack::apps::write_mot(o.tracks, rows);
+  completed.keep = true;
   int valid = 0, heavy = 0;
   for (const auto& e : estimates) valid += e.valid, heavy += e.valid && e.heavy;
   std::cout << "wrote " << estimates.size() << " vehicles (" << heavy << " heavy, " << valid - heavy
@@ -572,8 +584,16 @@ const std::vector<Command>& commands() {
        run_params},
       {"vehicles",
        "vehicle dimensions (W, H, L), class and light/heavy from a calibrated road camera",
-       "vtrack vehicles --observations OBS --camera CAMERA --out VEHICLES [--models FILE]\n"
+       "vtrack vehicles VIDEO --camera CAMERA --out VEHICLES [--tracks TRACKS]\n"
+       "                [--render OUT.mp4] [--models FILE] [--config FILE] [--seed N]\n"
+       "                [--set name=value ...]\n"
+       "       vtrack vehicles --observations OBS --camera CAMERA --out VEHICLES [--models FILE]\n"
        "                [--config FILE] [--seed N] [--set name=value ...]\n\n"
+       "  VIDEO            a video file or a folder of images: KDE background subtraction,\n"
+       "                   foreground blobs and their outlines, a blob tracker, the estimator\n"
+       "  --tracks TRACKS  also write MOTChallenge rows frame,id,x,y,w,h,1,-1,-1,-1 of every\n"
+       "                   vehicle's image box per frame (ids = vehicle_id)\n"
+       "  --render FILE    also write the video with each vehicle's outline, id and class\n"
        "  --observations OBS  silhouettes per line: frame,vehicle_id,x,y,w,h (an image box) or\n"
        "                   frame,vehicle_id,x1,y1,...,xn,yn (a polygon, n >= 3); pixels, frames\n"
        "                   from 1; '#' comments and a header line 'frame,...' skipped\n"
@@ -584,15 +604,18 @@ const std::vector<Command>& commands() {
        "                   vehicle never fully in view: class not_fully_in_view, light_heavy unknown\n"
        "  --models FILE    vehicle classes (YAML/JSON list `models` of {name, W, H, L, sigma_w,\n"
        "                   sigma_h, sigma_l, weight, heavy}); default the paper's Table 1\n"
-       "  --config FILE    YAML or JSON: a top-level seed and a section estimator\n"
-       "                   (vtrack.vehicles.VehicleDimensionEstimator.default_params())\n"
+       "  --config FILE    YAML or JSON: a top-level seed and sections estimator\n"
+       "                   (vtrack.vehicles.VehicleDimensionEstimator.default_params()), blobs\n"
+       "                   (below) and background (vtrack.KdeBackground.default_params())\n"
        "  --seed N         the samplers' seed (default 0): the same seed, the same answer\n"
        "  --set name=value one estimator parameter (repeatable): sampler [ray] (mh, discrete,\n"
        "                   rays), reference [map] (mean, random, all), n_particles [200], burn_in\n"
        "                   [100], thinning [1], proposal_scale [0.2], dynamic_sigma [0.3],\n"
        "                   min_size [0.4,0.6,1.0], sigma_w/sigma_h/sigma_l [0.25], max_edge_px [4],\n"
-       "                   light_heavy_rule [class] (volume), heavy_volume [40], decision [mean]\n"
-       "                   (last), border_margin_px [1]",
+       "                   light_heavy_rule [volume] (class), heavy_volume [45], decision [mean]\n"
+       "                   (last), border_margin_px [1]; blobs: foreground_threshold [0.5],\n"
+       "                   blob_closing [5], min_area [150], min_overlap [0.2], lost_memory [5],\n"
+       "                   confirm_frames [3]; and the background's",
        run_vehicles},
       {"batch", "track many videos at once on Dask, locally or on a cluster (vtrack.batch)",
        "vtrack batch INPUTS... --out DIR [options]   (vtrack batch --help lists them)", run_batch},

@@ -215,8 +215,8 @@ const std::vector<std::pair<std::string, VehicleSampler>>& vehicle_sampler_names
   return names;
 }
 const std::vector<std::pair<std::string, LightHeavyRule>>& light_heavy_rule_names() {
-  static const std::vector<std::pair<std::string, LightHeavyRule>> names{{"class", LightHeavyRule::Class},
-                                                                         {"volume", LightHeavyRule::Volume}};
+  static const std::vector<std::pair<std::string, LightHeavyRule>> names{{"volume", LightHeavyRule::Volume},
+                                                                         {"class", LightHeavyRule::Class}};
   return names;
 }
 const std::vector<std::pair<std::string, VehicleDecision>>& vehicle_decision_names() {
