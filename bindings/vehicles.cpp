@@ -431,12 +431,14 @@ Per-vehicle width, height, length and class from its silhouettes in a calibrated
 
 VehicleDimensionEstimator(camera, *, models=None, **params): models None (Table 1), a list of
 dicts as table1_vehicle_models() returns, or a models file path. params (default_params()):
-sampler "ray" (§3.3's samples on the ray), "mh" (MH in W-H-L space), "discrete" (the projected
-class models) or "rays" (beyond the paper: the exact rigid posterior given every frame's ray);
+sampler "rays" (beyond the paper, the default: the exact rigid posterior given every frame's ray),
+"ray" (§3.3's samples on the ray), "mh" (MH in W-H-L space) or "discrete" (the projected class
+models);
 reference "map" | "mean" | "random" (x*) | "all" (the full acceptance ratio); n_particles,
 burn_in, thinning; proposal_scale and dynamic_sigma (metres); min_size (W, H, L); sigma_w,
 sigma_h, sigma_l (S of §3.1) and max_edge_px; light_heavy_rule "volume" (W H L >=
-heavy_volume m^3) | "class" (the MAP class's heavy flag); decision "mean" (over the frames used) | "last"; border_margin_px; seed.
+heavy_volume m^3) | "class" (the MAP class's heavy flag); decision "auto" (last for rays, else
+mean) | "mean" (over the frames used) | "last"; border_margin_px; seed.
 
 update(vehicle_id, silhouette, frame=None) takes an image polygon (N, 2) or box (x, y, w, h) and
 returns whether the frame was used (not cut by the image border, a feasible ray); frame defaults

@@ -608,12 +608,12 @@ const std::vector<Command>& commands() {
        "                   (vtrack.vehicles.VehicleDimensionEstimator.default_params()), blobs\n"
        "                   (below) and background (vtrack.KdeBackground.default_params())\n"
        "  --seed N         the samplers' seed (default 0): the same seed, the same answer\n"
-       "  --set name=value one estimator parameter (repeatable): sampler [ray] (mh, discrete,\n"
-       "                   rays), reference [map] (mean, random, all), n_particles [200], burn_in\n"
-       "                   [100], thinning [1], proposal_scale [0.2], dynamic_sigma [0.3],\n"
+       "  --set name=value one estimator parameter (repeatable): sampler [rays] (ray, mh,\n"
+       "                   discrete), reference [map] (mean, random, all), n_particles [100],\n"
+       "                   burn_in [50], thinning [1], proposal_scale [0.2], dynamic_sigma [0.3],\n"
        "                   min_size [0.4,0.6,1.0], sigma_w/sigma_h/sigma_l [0.25], max_edge_px [4],\n"
-       "                   light_heavy_rule [volume] (class), heavy_volume [45], decision [mean]\n"
-       "                   (last), border_margin_px [1]; blobs: foreground_threshold [0.5],\n"
+       "                   light_heavy_rule [volume] (class), heavy_volume [45], decision [auto]\n"
+       "                   (mean, last), border_margin_px [1]; blobs: foreground_threshold [0.5],\n"
        "                   blob_closing [5], min_area [150], min_overlap [0.2], lost_memory [5],\n"
        "                   confirm_frames [3]; and the background's",
        run_vehicles},

@@ -220,8 +220,8 @@ const std::vector<std::pair<std::string, LightHeavyRule>>& light_heavy_rule_name
   return names;
 }
 const std::vector<std::pair<std::string, VehicleDecision>>& vehicle_decision_names() {
-  static const std::vector<std::pair<std::string, VehicleDecision>> names{{"mean", VehicleDecision::Mean},
-                                                                          {"last", VehicleDecision::Last}};
+  static const std::vector<std::pair<std::string, VehicleDecision>> names{
+      {"auto", VehicleDecision::Auto}, {"mean", VehicleDecision::Mean}, {"last", VehicleDecision::Last}};
   return names;
 }
 
@@ -414,7 +414,9 @@ VehicleEstimate VehicleDimensionEstimator::estimate(int vehicle_id) const {
   e.frames_used = static_cast<int>(t.means.size());
   if (t.means.empty()) return e;  // never fully in view: not guessed
   e.valid = true;
-  if (params_.decision == VehicleDecision::Last) {
+  const bool last = params_.decision == VehicleDecision::Last ||
+                    (params_.decision == VehicleDecision::Auto && params_.sampler == VehicleSampler::Rays);
+  if (last) {
     e.dimensions = t.means.back();
     e.class_probability = t.class_probability.back();
   } else {
