@@ -69,6 +69,7 @@ bench: $(VENV)/.vtrack-installed $(VENV)/.bench-deps $(VIDEO)
 	$(PY) benchmarks/detections_sim.py
 	$(PY) benchmarks/track_video.py
 	$(PY) benchmarks/vehicle_geometry.py
+	$(PY) benchmarks/vehicles.py --video-vehicles 20
 	$(PY) benchmarks/color_histogram.py
 	$(PY) benchmarks/follow.py
 	$(PY) benchmarks/person_size.py

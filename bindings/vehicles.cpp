@@ -1,6 +1,7 @@
 // Bindings of the vehicle geometry (particle-filters-human-vehicle §3.1-3.2): the road camera, the
 // ray observation of a vehicle's silhouette, the class mixture prior. Conversion only.
 #include <algorithm>
+#include <climits>
 #include <optional>
 #include <string>
 #include <tuple>
@@ -10,6 +11,12 @@
 #include "args.hpp"
 #include "common.hpp"
 #include "params.hpp"
+#include "guard.hpp"
+#include "tracks.hpp"
+#include "vtrack/apps/output_paths.hpp"
+#include "vtrack/apps/vehicles.hpp"
+#include "vtrack/apps/video_writer.hpp"
+#include "vtrack/filters/vehicle_dimensions.hpp"
 #include "vtrack/models/camera.hpp"
 #include "vtrack/models/vehicle_observation.hpp"
 
@@ -358,12 +365,242 @@ below min_size = (W, H, L) metres. Hypotheses are rows (W, H, L).
           py::arg("whl"), "Index of the most probable model per hypothesis row, (N,) int.");
 }
 
+using filters::VehicleDimensionEstimator;
+using filters::VehicleEstimate;
+
+// `models`: None (Table 1), a list of dicts, or a models file path.
+std::vector<VehicleModel> models_arg(const py::handle& models) {
+  std::vector<VehicleModel> out;
+  if (models.is_none()) return out;
+  if (py::isinstance<py::list>(models) || py::isinstance<py::tuple>(models)) {
+    const auto seq = py::reinterpret_borrow<py::sequence>(models);
+    for (std::size_t i = 0; i < seq.size(); ++i) out.push_back(model_from_dict(seq[i], i));
+    if (out.empty()) throw py::value_error("models must not be empty");
+    return out;
+  }
+  return models::read_vehicle_models_file(path_arg(models, "models"));
+}
+
+py::dict estimate_dict(const VehicleEstimate& e) {
+  py::dict d;
+  d["vehicle_id"] = e.vehicle_id;
+  d["valid"] = e.valid;
+  d["class"] = e.valid ? py::object(py::str(e.class_name)) : py::object(py::str("not_fully_in_view"));
+  d["light_heavy"] = e.valid ? (e.heavy ? "heavy" : "light") : "unknown";
+  d["W"] = e.dimensions(0);
+  d["H"] = e.dimensions(1);
+  d["L"] = e.dimensions(2);
+  d["first_frame"] = e.first_frame;
+  d["last_frame"] = e.last_frame;
+  d["frames_seen"] = e.frames_seen;
+  d["frames_used"] = e.frames_used;
+  d["class_probability"] = e.valid ? py::object(py::cast(Eigen::VectorXd(e.class_probability))) : py::none();
+  return d;
+}
+
+py::list estimates_list(const std::vector<VehicleEstimate>& estimates) {
+  py::list out;
+  for (const auto& e : estimates) out.append(estimate_dict(e));
+  return out;
+}
+
+int vehicle_id_arg(const py::handle& id) { return static_cast<int>(int_arg(id, "vehicle_id", 0, INT_MAX)); }
+
+bool update(VehicleDimensionEstimator& est, const py::handle& id_arg, const py::handle& silhouette,
+            const py::handle& frame_arg) {
+  ObjectGuard guard(&est);
+  const int id = vehicle_id_arg(id_arg);
+  const int frame = frame_arg.is_none() ? est.next_frame(id) : static_cast<int>(int_arg(frame_arg, "frame", 1, INT_MAX));
+  py::array a = py::array::ensure(silhouette);
+  if (a && a.ndim() == 1) {
+    auto box = as_vector(silhouette, "silhouette");
+    if (box.size() != 4) throw py::value_error("silhouette as a box must be (x, y, w, h)");
+    const double* b = box.data();
+    py::gil_scoped_release release;
+    return est.update_box(id, frame, b[0], b[1], b[2], b[3]);
+  }
+  const auto poly = point_rows<2>(silhouette, "silhouette");
+  py::gil_scoped_release release;
+  return est.update_polygon(id, frame, poly.columns());
+}
+
+void bind_estimator(py::module_& m) {
+  py::class_<VehicleDimensionEstimator> est(m, "VehicleDimensionEstimator", R"doc(
+Per-vehicle width, height, length and class from its silhouettes in a calibrated road camera
+(particle-filters-human-vehicle §3; cpp/include/vtrack/filters/vehicle_dimensions.hpp).
+
+VehicleDimensionEstimator(camera, *, models=None, **params): models None (Table 1), a list of
+dicts as table1_vehicle_models() returns, or a models file path. params (default_params()):
+sampler "rays" (beyond the paper, the default: the exact rigid posterior given every frame's ray),
+"ray" (§3.3's samples on the ray), "mh" (MH in W-H-L space) or "discrete" (the projected class
+models);
+reference "map" | "mean" | "random" (x*) | "all" (the full acceptance ratio); n_particles,
+burn_in, thinning; proposal_scale and dynamic_sigma (metres); min_size (W, H, L); sigma_w,
+sigma_h, sigma_l (S of §3.1) and max_edge_px; light_heavy_rule "volume" (W H L >=
+heavy_volume m^3) | "class" (the MAP class's heavy flag); decision "auto" (last for rays, else
+mean) | "mean" (over the frames used) | "last"; border_margin_px; seed.
+
+update(vehicle_id, silhouette, frame=None) takes an image polygon (N, 2) or box (x, y, w, h) and
+returns whether the frame was used (not cut by the image border, a feasible ray); frame defaults
+to the vehicle's previous frame + 1. estimates() lists a dict per vehicle: vehicle_id, valid,
+class, light_heavy, W, H, L, first_frame, last_frame, frames_seen, frames_used,
+class_probability (a vehicle never fully in view: class "not_fully_in_view", light_heavy
+"unknown", NaN dimensions). The same seed gives the same estimates, whatever the order in which
+vehicles are updated.
+)doc");
+  est.def(py::init([](const Camera& camera, const py::handle& models, const py::kwargs& kwargs) {
+            auto params = params_from_kwargs<filters::VehicleEstimatorParams>(kwargs, "vehicle estimator");
+            auto list = models_arg(models);
+            return VehicleDimensionEstimator(camera, std::move(list), params);
+          }),
+          py::arg("camera"), py::kw_only(), py::arg("models") = py::none())
+      .def("update", &update, py::arg("vehicle_id"), py::arg("silhouette"), py::arg("frame") = py::none(),
+           "Add one frame's silhouette of a vehicle; True when the frame was used.")
+      .def(
+          "estimate",
+          [](const VehicleDimensionEstimator& e, const py::handle& id) {
+            ObjectGuard guard(&e);
+            return estimate_dict(e.estimate(vehicle_id_arg(id)));
+          },
+          py::arg("vehicle_id"), "The dict of one vehicle (see the class).")
+      .def(
+          "estimates",
+          [](const VehicleDimensionEstimator& e) {
+            ObjectGuard guard(&e);
+            return estimates_list(e.estimates());
+          },
+          "One dict per vehicle, by id (see the class).")
+      .def(
+          "posterior",
+          [](const VehicleDimensionEstimator& e, const py::handle& id) -> py::object {
+            ObjectGuard guard(&e);
+            const auto* p = e.posterior(vehicle_id_arg(id));
+            if (p == nullptr) return py::none();
+            py::dict d;
+            d["samples"] = Eigen::MatrixXd(p->samples);
+            d["log_target"] = Eigen::VectorXd(p->log_target);
+            d["mean"] = Eigen::Vector3d(p->mean);
+            d["map"] = Eigen::Vector3d(p->map);
+            d["class_probability"] = Eigen::VectorXd(p->class_probability);
+            d["acceptance_rate"] = p->acceptance_rate;
+            return std::move(d);
+          },
+          py::arg("vehicle_id"),
+          "The last used frame's posterior: samples (N_s, 3), log_target, mean, map, class_probability, "
+          "acceptance_rate; None before any used frame.")
+      .def_property_readonly("models",
+                             [](const VehicleDimensionEstimator& e) { return models_to_list(e.prior().params().models); })
+      .def_property_readonly("camera", [](const VehicleDimensionEstimator& e) { return e.camera(); });
+  def_params<filters::VehicleEstimatorParams>(
+      est, [](const VehicleDimensionEstimator& e) { return e.params(); });
+
+  m.def(
+      "_estimate_vehicles_from_file",
+      [](const py::handle& observations, const Camera& camera, const py::handle& models, const py::dict& params,
+         const py::handle& out) {
+        const std::string path = path_arg(observations, "observations");
+        const std::string out_path = out.is_none() ? "" : path_arg(out, "out");
+        auto p = params_from_kwargs<filters::VehicleEstimatorParams>(params, "vehicle estimator");
+        VehicleDimensionEstimator est(camera, models_arg(models), p);
+        std::vector<VehicleEstimate> result;
+        {
+          PythonInterrupts interrupts;
+          py::gil_scoped_release release;
+          if (!out_path.empty()) apps::check_outputs({{"observations", path}}, {{"out", out_path}});
+          result = apps::estimate_vehicles(est, apps::read_vehicle_observations(path));
+          if (!out_path.empty()) apps::write_vehicles_csv(out_path, result);
+        }
+        return estimates_list(result);
+      },
+      py::arg("observations"), py::arg("camera"), py::arg("models"), py::arg("params"), py::arg("out"),
+      "The compiled half of vtrack.vehicles.estimate_vehicles (use that).");
+}
+
+// Sets `name` in the table of `params` when it has it.
+template <class Params>
+bool set_in(Params& params, const std::string& name, const py::handle& value) {
+  const auto* e = Params::table().find(name);
+  if (e == nullptr) return false;
+  e->set(params, parameter_from_python(name, e->kind, e->size, value));
+  return true;
+}
+
+// The video pipeline's parameters: config sections {"seed", "background", "blobs", "estimator"}
+// (what vtrack.load_config returns), then keywords of any section.
+apps::VehiclePipelineParams vehicle_pipeline_params(const py::dict& config, const py::dict& params) {
+  apps::VehiclePipelineParams p;
+  auto set = [&p](const std::string& section, const std::string& name, const py::handle& value) {
+    const bool any = section.empty();
+    if ((any || section == "estimator") && set_in(p.estimator, name, value)) return;
+    if ((any || section == "blobs") && set_in(p.blobs, name, value)) return;
+    if ((any || section == "background") && set_in(p.background, name, value)) return;
+    std::vector<std::string> names;
+    if (any || section == "estimator") names = filters::VehicleEstimatorParams::table().names();
+    if (any || section == "blobs") for (const auto& n : apps::VehicleBlobParams::table().names()) names.push_back(n);
+    if (any || section == "background") for (const auto& n : image::KdeBackgroundParams::table().names()) names.push_back(n);
+    throw_unknown_keyword(name, any ? "vehicles" : section, names);
+  };
+  for (const auto& item : config) {
+    const std::string section = py::str(item.first).cast<std::string>();
+    if (section == "seed") {
+      set("estimator", "seed", item.second);
+      continue;
+    }
+    if (section != "background" && section != "blobs" && section != "estimator") {
+      throw py::value_error("config: vehicles has the sections background, blobs and estimator, got '" + section + "'");
+    }
+    if (!py::isinstance<py::dict>(item.second)) throw py::type_error("config section '" + section + "' must be a dict");
+    for (const auto& entry : item.second.cast<py::dict>()) set(section, py::str(entry.first).cast<std::string>(), entry.second);
+  }
+  for (const auto& item : params) set("", py::str(item.first).cast<std::string>(), item.second);
+  apps::validate(p);
+  return p;
+}
+
+void bind_pipeline(py::module_& m) {
+  m.def(
+      "_measure_vehicles",
+      [](const py::handle& video_arg, const Camera& camera, const py::handle& models, const py::dict& config,
+         const py::dict& params, const py::handle& render_arg, const py::handle& out_arg, const py::handle& tracks_arg,
+         const py::object& progress) {
+        const std::string video = path_arg(video_arg, "video");
+        const std::string render = render_arg.is_none() ? "" : path_arg(render_arg, "render");
+        const std::string out = out_arg.is_none() ? "" : path_arg(out_arg, "out");
+        const std::string tracks = tracks_arg.is_none() ? "" : path_arg(tracks_arg, "tracks");
+        if (!render.empty() && !apps::is_video_output(render)) {
+          throw py::value_error("render must name a .avi, .mp4 or .mkv file, got '" + render + "'");
+        }
+        const auto p = vehicle_pipeline_params(config, params);
+        auto list = models_arg(models);
+        const apps::FrameProgress report = progress_callback(progress);
+        apps::VehiclePipelineResult result;
+        {
+          PythonInterrupts interrupts;
+          py::gil_scoped_release release;
+          std::vector<apps::NamedPath> outputs;
+          for (const auto& [name, path] : {std::pair{"out", out}, {"tracks", tracks}, {"render", render}}) {
+            if (!path.empty()) outputs.push_back({name, path});
+          }
+          apps::check_outputs({{"video", video}}, outputs);
+          result = apps::measure_vehicles(video, camera, std::move(list), p, render, report);
+          if (!out.empty()) apps::write_vehicles_csv(out, result.vehicles);
+          if (!tracks.empty()) apps::write_mot(tracks, result.tracks);
+        }
+        return py::make_tuple(estimates_list(result.vehicles), track_rows(result.tracks), result.frames);
+      },
+      py::arg("video"), py::arg("camera"), py::arg("models"), py::arg("config"), py::arg("params"),
+      py::arg("render"), py::arg("out"), py::arg("tracks"), py::arg("progress"),
+      "The compiled half of vtrack.vehicles.measure_vehicles (use that).");
+}
+
 }  // namespace
 
 void bind_vehicles(py::module_& m) {
   bind_camera(m);
   bind_observation(m);
   bind_prior(m);
+  bind_estimator(m);
+  bind_pipeline(m);
 }
 
 }  // namespace vtrack::bindings

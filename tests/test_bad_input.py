@@ -5,6 +5,7 @@ parameters and colliding outputs. Each case asserts the exit code (2 for a malfo
 RuntimeError, SystemError or a crash), that the message names the problem, and that nothing
 partial is left behind."""
 
+import json
 import math
 import os
 import subprocess
@@ -64,6 +65,37 @@ DETS = {
     "too_few_fields": ("short.txt", b"1,-1,1,2,3\n"),
     "truncated_line": ("cutline.txt", GOOD_DET + b"6,-1,1"),
 }
+# A road camera (vtrack.synthetic_road's gantry set-up), an observations file of one vehicle's
+# silhouettes, and bad camera and observations files for `vtrack vehicles`.
+CAMERA_JSON = (b'{"K": [[900, 0, 479.5], [0, 900, 269.5], [0, 0, 1]], "dist": [], '
+               b'"R": [[1, 0, 0], [0, -0.27563735581699916, -0.9612616959383189], '
+               b'[0, 0.9612616959383189, -0.27563735581699916]], '
+               b'"t": [-5.25, 7.209462719537392, 2.0672801686274935], "image_size": [960, 540]}')
+GOOD_OBS = b"frame,vehicle_id,x,y,w,h\n" + b"".join(
+    b"%d,1,%d,300,60,50\n" % (k, 400 + 5 * k) for k in range(1, 6))
+CAMERA_CONTENTS = {
+    "missing_key": ("nokey.json", b'{"K": [[900, 0, 479.5], [0, 900, 269.5], [0, 0, 1]], "dist": []}'),
+    "singular_R": ("singular.json", CAMERA_JSON.replace(b'"R": [[1, 0, 0]', b'"R": [[0, 0, 0]')),
+    "non_orthonormal_R": ("skewR.json", CAMERA_JSON.replace(b'"R": [[1, 0, 0]', b'"R": [[1, 0.2, 0]')),
+    "looking_up": ("up.json", CAMERA_JSON.replace(b'0.9612616959383189, -0.27563735581699916]]',
+                                                 b'-0.9612616959383189, 0.27563735581699916]]')),
+}
+CAMERAS = {**FILES, **CAMERA_CONTENTS}
+OBSERVATIONS = {
+    **FILES,
+    "nan": ("nan.csv", b"1,1,nan,300,60,50\n"),
+    "frame_zero": ("f0.csv", b"0,1,400,300,60,50\n"),
+    "frame_fraction": ("ff.csv", b"1.5,1,400,300,60,50\n"),
+    "negative_size": ("neg.csv", b"1,1,400,300,-60,50\n"),
+    "odd_coordinates": ("odd.csv", b"1,1,400,300,460,300,460\n"),
+    "too_few_fields": ("short.csv", b"1,1,400,300\n"),
+    "above_horizon": ("sky.csv", b"1,1,400,-900,60,50\n"),
+    "frames_backwards": ("back.csv", b"2,1,400,300,60,50\n1,1,400,300,60,50\n"),
+    "truncated_line": ("cut.csv", GOOD_OBS + b"6,1,4"),
+}
+_camera_file = json.loads(CAMERA_JSON)
+_CAMERA = vtrack.vehicles.Camera(_camera_file["K"], _camera_file["dist"], _camera_file["R"], _camera_file["t"],
+                                 image_size=tuple(_camera_file["image_size"]))
 CONFIGS = {
     **FILES,
     "syntax": ("syntax.yml", b"tracker:\n  a: 1\n b: [\n"),
@@ -122,6 +154,10 @@ CLI_FILE_CASES = (
     + [("params-config", kind) for kind in CONFIGS]
     + [("follow", kind) for kind in VIDEOS]
     + [("follow-config", kind) for kind in CONFIGS]
+    + [("vehicles-obs", kind) for kind in OBSERVATIONS]
+    + [("vehicles-video", kind) for kind in VIDEOS]
+    + [("vehicles-camera", kind) for kind in CAMERAS]
+    + [("vehicles-config", kind) for kind in CONFIGS]
 )
 
 
@@ -130,6 +166,12 @@ def test_cli_bad_files(tmp_path, command, kind):
     out = tmp_path / "out"
     if command.endswith("config"):
         spec = CONFIGS[kind]
+    elif command == "vehicles-video":
+        spec = VIDEOS[kind]
+    elif command == "vehicles-obs":
+        spec = OBSERVATIONS[kind]
+    elif command == "vehicles-camera":
+        spec = CAMERAS[kind]
     elif command == "track-det":
         spec = DETS[kind]
     else:
@@ -151,11 +193,20 @@ def test_cli_bad_files(tmp_path, command, kind):
                    out / "r.avi"],
         "follow-config": ["follow", make(tmp_path, ("v.avi", VIDEO)), "--init", "1,1,8,8",
                           "--config", bad, "--out", out / "t.txt"],
+        "vehicles-obs": ["vehicles", "--observations", bad, "--camera", make(tmp_path, ("cam.json", CAMERA_JSON)),
+                         "--out", out / "v.csv"],
+        "vehicles-video": ["vehicles", bad, "--camera", make(tmp_path, ("cam.json", CAMERA_JSON)), "--out",
+                           out / "v.csv", "--tracks", out / "t.txt", "--render", out / "r.avi"],
+        "vehicles-camera": ["vehicles", "--observations", make(tmp_path, ("obs.csv", GOOD_OBS)), "--camera", bad,
+                            "--out", out / "v.csv"],
+        "vehicles-config": ["vehicles", "--observations", make(tmp_path, ("obs.csv", GOOD_OBS)), "--camera",
+                            make(tmp_path, ("cam.json", CAMERA_JSON)), "--config", bad, "--out", out / "v.csv"],
     }[command]
     result, left = cli(tmp_path, *args)
     if kind == "empty" and command in ("track-det", "track-config", "bgs-config", "params-config",
-                                       "follow-config"):
-        # Valid: a det file without rows tracks nothing, an empty config changes nothing.
+                                       "follow-config", "vehicles-obs", "vehicles-config"):
+        # Valid: a det file without rows tracks nothing, an empty config changes nothing, an
+        # observations file without rows has no vehicles.
         assert result.returncode == 0, result.stderr
         return
     assert result.returncode == 1, (args, result.returncode, result.stderr)
@@ -163,7 +214,7 @@ def test_cli_bad_files(tmp_path, command, kind):
     message = result.stderr
     assert bad.name in message or "frame" in message or "parameter" in message or \
         any(word in message for word in ("section", "name", "nested", "line", "delta_f",
-                                         "birth_particles")), message
+                                         "birth_particles", "vehicle")), message
     assert "Traceback" not in message and "terminate called" not in message
     assert left == [], left
 
@@ -226,6 +277,26 @@ USAGE_CASES = [
     (["params", "--method", "x"], "method must be one of"),
     (["params", "--set", "delta_f=abc"], "delta_f"),
     (["params", "--seed", "-5"], "--seed"),
+    (["vehicles"], "--camera"),
+    (["vehicles", "--observations", "{obs}", "--camera", "{cam}"], "--out"),
+    (["vehicles", "--camera", "{cam}", "--out", "{out}"], "--observations"),
+    (["vehicles", "--observations", "{obs}", "--camera", "{cam}", "--out", "{obs}"], "--out"),
+    (["vehicles", "--observations", "{obs}", "--camera", "{cam}", "--out", "{cam}"], "--out"),
+    (["vehicles", "--observations", "{obs}", "--camera", "{cam}", "--out", "{out}", "--tracks", "{out_dir}/t.txt"],
+     "--tracks"),
+    (["vehicles", "--observations", "{obs}", "--camera", "{cam}", "--out", "{out}", "--set", "n_particles=0"],
+     "n_particles"),
+    (["vehicles", "--observations", "{obs}", "--camera", "{cam}", "--out", "{out}", "--set", "sampler=gibbs"],
+     "sampler"),
+    (["vehicles", "--observations", "{obs}", "--camera", "{cam}", "--out", "{out}", "--set", "sigma_w=nan"],
+     "sigma_w"),
+    (["vehicles", "--observations", "{obs}", "--camera", "{cam}", "--out", "{out}", "--seed", "-1"], "--seed"),
+    (["vehicles", "--observations", "{obs}", "--camera", "{cam}", "--out", "{out}", "--bogus", "1"], "--bogus"),
+    (["vehicles", "{video}", "--observations", "{obs}", "--camera", "{cam}", "--out", "{out}"], "either"),
+    (["vehicles", "{video}", "--camera", "{cam}", "--out", "{out}", "--render", "{out_dir}/r.txt"], "--render"),
+    (["vehicles", "{video}", "--camera", "{cam}", "--out", "{out}", "--tracks", "{video}"], "--tracks"),
+    (["vehicles", "{video}", "--camera", "{cam}", "--out", "{out}", "--set", "min_area=0"], "min_area"),
+    (["vehicles", "{video}", "--camera", "{cam}", "--out", "{out}", "--set", "blob_closing=4"], "blob_closing"),
     (["bogus"], "bogus"),
     ([], "no command"),
     (["follow", "{video}", "--out", "{out}"], "--init"),
@@ -249,8 +320,10 @@ USAGE_CASES = [
 def test_cli_usage_errors(tmp_path, args, word):
     video = make(tmp_path, ("v.avi", VIDEO))
     det = good_det(tmp_path)
-    before = {p: p.read_bytes() for p in (video, det)}
+    before = {p: p.read_bytes() for p in (video, det, tmp_path / "in" / "obs.csv", tmp_path / "in" / "cam.json")
+              if p.exists()}
     names = {"video": video, "det": det, "out": tmp_path / "out" / "t.txt",
+             "obs": make(tmp_path, ("obs.csv", GOOD_OBS)), "cam": make(tmp_path, ("cam.json", CAMERA_JSON)),
              "out_dir": tmp_path / "out", "in_dir": tmp_path / "in"}
     result, left = cli(tmp_path, *[a.format(**names) for a in args])
     assert result.returncode == 2, (args, result.returncode, result.stderr)
@@ -273,6 +346,9 @@ READERS = {
     "track_video": (lambda p: vtrack.track_video(p, method="mb"), VIDEOS),
     "read_camera_file": (vtrack.vehicles.read_camera_file, FILES),
     "read_vehicle_models_file": (vtrack.vehicles.read_vehicle_models_file, FILES),
+    "read_camera_file_contents": (vtrack.vehicles.read_camera_file, CAMERA_CONTENTS),
+    "estimate_vehicles": (lambda p: vtrack.vehicles.estimate_vehicles(p, _CAMERA), OBSERVATIONS),
+    "measure_vehicles": (lambda p: vtrack.vehicles.measure_vehicles(p, _CAMERA), VIDEOS),
 }
 READER_CASES = [(r, k) for r, (_, kinds) in READERS.items() for k in kinds]
 # Contents a reader accepts as valid (empty det/MOT files are no rows; a config may be empty; a
@@ -283,7 +359,8 @@ ACCEPTED = {
     ("read_mot", "coordinate_huge"), ("read_mot", "too_few_fields"),
     ("load_config", "unknown_section"), ("load_config", "unknown_name"), ("load_config", "wrong_kind"),
     ("load_config", "int_overflow"), ("load_config", "nan"), ("load_config", "negative"),
-    ("probe_video", "truncated"), ("track_video", "truncated"),
+    ("probe_video", "truncated"), ("track_video", "truncated"), ("estimate_vehicles", "empty"),
+    ("measure_vehicles", "truncated"),
 }
 
 
@@ -296,6 +373,7 @@ def test_python_readers(tmp_path, reader, kind):
             function(path)
         except (OSError, ValueError) as e:  # a truncated video may fail at the cut: named
             assert (reader, kind) in {("probe_video", "truncated"), ("track_video", "truncated"),
+                                      ("measure_vehicles", "truncated"),
                                       ("read_mot", "too_few_fields")}, e
             assert "frame" in str(e) or path.name in str(e), e
         return
@@ -322,6 +400,7 @@ CLASSES = {
     "DepthLikelihood": lambda **kw: vtrack.models.DepthLikelihood(64, 48, 50.0, **kw),
     "ColorParticleTracker": lambda **kw: vtrack.ColorParticleTracker(**kw),
     "PartParticleTracker": lambda **kw: vtrack.PartParticleTracker(**kw),
+    "VehicleDimensionEstimator": lambda **kw: vtrack.vehicles.VehicleDimensionEstimator(_CAMERA, **kw),
 }
 DEFAULTS = {
     "KdeBackground": vtrack.KdeBackground.default_params(),
@@ -332,6 +411,7 @@ DEFAULTS = {
     "DepthLikelihood": vtrack.models.DepthLikelihood.default_params(),
     "ColorParticleTracker": vtrack.ColorParticleTracker.default_params(),
     "PartParticleTracker": vtrack.PartParticleTracker.default_params(),
+    "VehicleDimensionEstimator": vtrack.vehicles.VehicleDimensionEstimator.default_params(),
 }
 # Always refused: NaN (no parameter means anything by it), a string, None, and (for an integer
 # parameter) an int beyond its type. Refused or accepted (some parameters are documented to take
@@ -390,6 +470,7 @@ _color = vtrack.ColorParticleTracker()
 _color.init(_frame, (10, 10, 20, 20))
 _parts = vtrack.PartParticleTracker()
 _parts.init(_frame, (10, 10, 20, 20))
+_vehicles = vtrack.vehicles.VehicleDimensionEstimator(_CAMERA)
 ARRAY_TAKERS = {
     "BoxTracker.step": _box.step,
     "MultiBernoulliTracker.step": _mb.step,
@@ -426,6 +507,7 @@ ARRAY_TAKERS = {
     "PartParticleTracker.init-box": lambda a: vtrack.PartParticleTracker().init(_frame, a),
     "PartParticleTracker.update": _parts.update,
     "PartParticleTracker-parts": lambda a: vtrack.PartParticleTracker(parts=a),
+    "VehicleDimensionEstimator.update": lambda a: _vehicles.update(1, a),
 }
 # Inputs some functions accept by definition: NaN rows are "absent" in ospa2 tracks and NaN
 # depth is "no reading"; inf weights/costs have meanings in the log domain and in assignment.

@@ -28,6 +28,7 @@
 #include "vtrack/apps/output_paths.hpp"
 #include "vtrack/apps/pipeline.hpp"
 #include "vtrack/apps/track_detections.hpp"
+#include "vtrack/apps/vehicles.hpp"
 #include "vtrack/apps/video_source.hpp"
 #include "vtrack/core/errors.hpp"
 #include "vtrack/core/limits.hpp"
@@ -505,6 +506,94 @@ int run_follow(const std::vector<std::string>& args) {
   return 0;
 }
 
+// The options of `vtrack vehicles`.
+struct VehicleOptions {
+  std::string input, camera, output, observations, tracks, render, config, models;
+  std::vector<std::string> settings;
+  std::optional<std::uint64_t> seed;
+};
+
+// The pipeline's parameters from --config (sections background, blobs, estimator; top-level
+// seed), --seed and --set (in that order of precedence, lowest first).
+vtrack::apps::VehiclePipelineParams vehicle_params(const VehicleOptions& o) {
+  vtrack::apps::VehiclePipelineParams params;
+  if (!o.config.empty()) {
+    vtrack::apps::apply_vehicle_config(params, vtrack::apps::read_config(o.config));
+    vtrack::apps::validate(params);  // a value out of range in the file is bad data (exit 1)
+  }
+  as_usage([&] {
+    if (o.seed) params.estimator.seed = *o.seed;
+    for (const auto& setting : o.settings) {
+      const auto [name, value] = vtrack::core::parse_setting(setting);
+      vtrack::apps::set_vehicle_parameter(params, name, value);
+    }
+    vtrack::apps::validate(params);
+  });
+  return params;
+}
+
+int run_vehicles(const std::vector<std::string>& args) {
+  VehicleOptions o;
+  o.input = walk_arguments("vehicles", args, [&](const std::string& a, const std::string& value) {
+    if (a == "--camera") o.camera = value;
+    else if (a == "--out") o.output = value;
+    else if (a == "--observations") o.observations = value;
+    else if (a == "--tracks") o.tracks = value;
+    else if (a == "--render") o.render = value;
+    else if (a == "--config") o.config = value;
+    else if (a == "--models") o.models = value;
+    else if (a == "--seed") o.seed = parse_seed(value);
+    else if (a == "--set") o.settings.push_back(value);
+    else throw UsageError("unknown option '" + a + "'");
+  });
+  if (o.camera.empty()) throw UsageError("vehicles needs --camera CAMERA (a JSON or YAML camera file)");
+  if (o.output.empty()) throw UsageError("vehicles needs --out VEHICLES (a CSV file)");
+  if (o.observations.empty() && o.input.empty()) throw UsageError("vehicles needs a VIDEO or --observations OBS");
+  if (!o.observations.empty() && !o.input.empty()) throw UsageError("give either a VIDEO or --observations, not both");
+  if (!o.observations.empty()) {
+    for (const auto& [flag, value] : {std::pair{"--tracks", o.tracks}, {"--render", o.render}}) {
+      if (!value.empty()) throw UsageError(std::string(flag) + " needs a VIDEO, not --observations");
+    }
+  }
+  if (!o.render.empty() && !vtrack::apps::is_video_output(o.render)) {
+    throw UsageError("--render must name a .avi, .mp4 or .mkv file, got '" + o.render + "'");
+  }
+  check_outputs({{"VIDEO", o.input}, {"--observations", o.observations}, {"--camera", o.camera},
+                 {"--config", o.config}, {"--models", o.models}},
+                {{"--out", o.output}, {"--tracks", o.tracks}, {"--render", o.render}});
+  const auto params = vehicle_params(o);
+  const auto camera = vtrack::models::read_camera_file(o.camera);
+  auto models = o.models.empty() ? std::vector<vtrack::models::VehicleModel>{}
+                                 : vtrack::models::read_vehicle_models_file(o.models);
+  std::vector<vtrack::filters::VehicleEstimate> estimates;
+  std::vector<vtrack::apps::TrackRow> rows;
+  if (!o.observations.empty()) {
+    vtrack::filters::VehicleDimensionEstimator estimator(camera, std::move(models), params.estimator);
+    estimates = vtrack::apps::estimate_vehicles(estimator, vtrack::apps::read_vehicle_observations(o.observations));
+  } else {
+    ProgressLine progress("vehicles");
+    auto result = vtrack::apps::measure_vehicles(o.input, camera, std::move(models), params, o.render,
+                                                 progress.callback());
+    progress.finish();
+    estimates = std::move(result.vehicles);
+    rows = std::move(result.tracks);
+  }
+  // Written only once every vehicle is estimated; should a later write fail, the outputs already
+  // completed are removed with it.
+  CompletedOutputs completed;
+  if (!o.render.empty()) completed.paths.push_back(o.render);
+  vtrack::apps::write_vehicles_csv(o.output, estimates);
+  completed.paths.push_back(o.output);
+  if (!o.tracks.empty()) vtrack::apps::write_mot(o.tracks, rows);
+  completed.keep = true;
+  int valid = 0, heavy = 0;
+  for (const auto& e : estimates) valid += e.valid, heavy += e.valid && e.heavy;
+  std::cout << "wrote " << estimates.size() << " vehicles (" << heavy << " heavy, " << valid - heavy
+            << " light, " << estimates.size() - static_cast<std::size_t>(valid) << " never fully in view) to "
+            << o.output << "\n";
+  return 0;
+}
+
 // `vtrack batch` is Python (vtrack.batch, on Dask): this execs the interpreter vtrack is
 // installed in and returns only when there is none.
 int run_batch(const std::vector<std::string>& args) {
@@ -585,6 +674,41 @@ const std::vector<Command>& commands() {
        "  Resolves the defaults, the config file, --seed and --set exactly as `vtrack track`\n"
        "  does and prints the result: each section of the method with every parameter.",
        run_params},
+      {"vehicles",
+       "vehicle dimensions (W, H, L), class and light/heavy from a calibrated road camera",
+       "vtrack vehicles VIDEO --camera CAMERA --out VEHICLES [--tracks TRACKS]\n"
+       "                [--render OUT.mp4] [--models FILE] [--config FILE] [--seed N]\n"
+       "                [--set name=value ...]\n"
+       "       vtrack vehicles --observations OBS --camera CAMERA --out VEHICLES [--models FILE]\n"
+       "                [--config FILE] [--seed N] [--set name=value ...]\n\n"
+       "  VIDEO            a video file or a folder of images: KDE background subtraction,\n"
+       "                   foreground blobs and their outlines, a blob tracker, the estimator\n"
+       "  --tracks TRACKS  also write MOTChallenge rows frame,id,x,y,w,h,1,-1,-1,-1 of every\n"
+       "                   vehicle's image box per frame (ids = vehicle_id)\n"
+       "  --render FILE    also write the video with each vehicle's outline, id and class\n"
+       "  --observations OBS  silhouettes per line: frame,vehicle_id,x,y,w,h (an image box) or\n"
+       "                   frame,vehicle_id,x1,y1,...,xn,yn (a polygon, n >= 3); pixels, frames\n"
+       "                   from 1; '#' comments and a header line 'frame,...' skipped\n"
+       "  --camera CAMERA  JSON or YAML: K (3x3), dist, R (3x3), t (3), x_cam = R X + t, world\n"
+       "                   in metres, Z up, road Z = 0; optional road_axis_world, image_size\n"
+       "  --out VEHICLES   CSV vehicle_id,class,light_heavy,W,H,L,first_frame,last_frame,\n"
+       "                   frames_used (metres); written only when every vehicle is estimated; a\n"
+       "                   vehicle never fully in view: class not_fully_in_view, light_heavy unknown\n"
+       "  --models FILE    vehicle classes (YAML/JSON list `models` of {name, W, H, L, sigma_w,\n"
+       "                   sigma_h, sigma_l, weight, heavy}); default the paper's Table 1\n"
+       "  --config FILE    YAML or JSON: a top-level seed and sections estimator\n"
+       "                   (vtrack.vehicles.VehicleDimensionEstimator.default_params()), blobs\n"
+       "                   (below) and background (vtrack.KdeBackground.default_params())\n"
+       "  --seed N         the samplers' seed (default 0): the same seed, the same answer\n"
+       "  --set name=value one estimator parameter (repeatable): sampler [rays] (ray, mh,\n"
+       "                   discrete), reference [map] (mean, random, all), n_particles [100],\n"
+       "                   burn_in [50], thinning [1], proposal_scale [0.2], dynamic_sigma [0.3],\n"
+       "                   min_size [0.4,0.6,1.0], sigma_w/sigma_h/sigma_l [0.25], max_edge_px [4],\n"
+       "                   light_heavy_rule [volume] (class), heavy_volume [45], decision [auto]\n"
+       "                   (mean, last), border_margin_px [1]; blobs: foreground_threshold [0.5],\n"
+       "                   blob_closing [5], min_area [150], min_overlap [0.2], lost_memory [5],\n"
+       "                   confirm_frames [3]; and the background's",
+       run_vehicles},
       {"batch", "track many videos at once on Dask, locally or on a cluster (vtrack.batch)",
        "vtrack batch INPUTS... --out DIR [options]   (vtrack batch --help lists them)", run_batch},
   };

@@ -640,6 +640,43 @@ class VehicleModelPrior:
     def class_log_posteriors(self, whl: ArrayLike) -> npt.NDArray[np.float64]: ...
     def map_class(self, whl: ArrayLike) -> npt.NDArray[np.int32]: ...
 
+class VehicleDimensionEstimator:
+    def __init__(
+        self,
+        camera: Camera,
+        *,
+        models: Union[None, List[Dict[str, Any]], str, PathLike] = None,
+        sampler: Literal["ray", "mh", "discrete", "rays"] = "rays",
+        reference: Literal["all", "random", "map", "mean"] = "map",
+        n_particles: int = 100,
+        burn_in: int = 50,
+        thinning: int = 1,
+        proposal_scale: float = 0.2,
+        dynamic_sigma: float = 0.3,
+        min_size: Tuple[float, float, float] = (0.4, 0.6, 1.0),
+        sigma_w: float = 0.25,
+        sigma_h: float = 0.25,
+        sigma_l: float = 0.25,
+        max_edge_px: float = 4.0,
+        light_heavy_rule: Literal["volume", "class"] = "volume",
+        heavy_volume: float = 45.0,
+        decision: Literal["auto", "mean", "last"] = "auto",
+        border_margin_px: float = 1.0,
+        seed: int = 0,
+    ) -> None: ...
+    def update(self, vehicle_id: int, silhouette: ArrayLike, frame: Optional[int] = None) -> bool: ...
+    def estimate(self, vehicle_id: int) -> Dict[str, Any]: ...
+    def estimates(self) -> List[Dict[str, Any]]: ...
+    def posterior(self, vehicle_id: int) -> Optional[Dict[str, Any]]: ...
+    @property
+    def models(self) -> List[Dict[str, Any]]: ...
+    @property
+    def camera(self) -> Camera: ...
+    @property
+    def params(self) -> Dict[str, Any]: ...
+    @staticmethod
+    def default_params() -> Dict[str, Any]: ...
+
 # ---- SMC engine: particle filters and their models (bindings/smc.cpp) --------------------------
 
 # A model written in Python: an object with `dim` (int) and a vectorised

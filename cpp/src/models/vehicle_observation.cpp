@@ -64,6 +64,16 @@ void validate(const RayLikelihoodParams& p) {
           "a positive finite number (pixels)");
 }
 
+const core::ParameterTable<RayLikelihoodParams>& RayLikelihoodParams::table() {
+  using P = RayLikelihoodParams;
+  static const auto table = core::ParameterTable<P>()
+                                .add("sigma_w", &P::sigma_w)
+                                .add("sigma_h", &P::sigma_h)
+                                .add("sigma_l", &P::sigma_l)
+                                .add("max_edge_px", &P::max_edge_px);
+  return table;
+}
+
 Eigen::Matrix2Xd silhouette_on_road(const Camera& camera, const Eigen::Ref<const Eigen::Matrix2Xd>& polygon,
                                     double max_edge_px) {
   if (polygon.cols() < 3) {

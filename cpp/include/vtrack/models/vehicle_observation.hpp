@@ -45,6 +45,7 @@
 
 #include <Eigen/Core>
 
+#include "vtrack/core/parameters.hpp"
 #include "vtrack/models/camera.hpp"
 
 namespace vtrack::models {
@@ -65,6 +66,9 @@ struct RayLikelihoodParams {
   // longer than this (pixels) are subdivided before projection. Without distortion the
   // homography maps lines to lines and the vertices alone are exact.
   double max_edge_px = 4.0;
+
+  // Names for config files and Python keywords (core/parameters.hpp).
+  static const core::ParameterTable<RayLikelihoodParams>& table();
 };
 // InvalidArgument naming the parameter: sigmas and max_edge_px must be positive and finite.
 void validate(const RayLikelihoodParams& params);

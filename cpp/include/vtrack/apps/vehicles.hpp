@@ -1,0 +1,113 @@
+#pragma once
+// Vehicle dimensions and light/heavy classes (particle-filters-human-vehicle §3) as an
+// application: the observations file, the vehicles.csv answer, and the run from observations
+// shared by the CLI (`vtrack vehicles --observations`) and Python.
+//
+// The observations file (obs.csv): one silhouette of one vehicle per line,
+//   frame,vehicle_id,x,y,w,h                  an image box [x, x + w] x [y, y + h], or
+//   frame,vehicle_id,x1,y1,x2,y2,...,xn,yn    an image polygon of n >= 3 vertices,
+// in pixels (continuous coordinates, pixel centres at integers; OpenCV's), frames from 1. Blank
+// lines, lines starting with '#' and a first line starting with "frame" (a header) are skipped.
+// A vehicle's rows must come in order of frame.
+//
+// vehicles.csv: a header and one row per vehicle, by id,
+//   vehicle_id,class,light_heavy,W,H,L,first_frame,last_frame,frames_used
+// W, H, L in metres (3 decimals), first/last_frame the frames it was seen in, frames_used the
+// frames its estimate uses (filters/vehicle_dimensions.hpp: fully in view, feasible ray). A
+// vehicle never fully in view has class "not_fully_in_view", light_heavy "unknown" and empty
+// W, H, L: reported as such, not guessed.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "vtrack/apps/config.hpp"
+#include "vtrack/apps/mot_files.hpp"
+#include "vtrack/apps/video_source.hpp"
+#include "vtrack/filters/vehicle_dimensions.hpp"
+#include "vtrack/image/kde_background.hpp"
+#include "vtrack/models/camera.hpp"
+
+namespace vtrack::apps {
+
+struct VehicleSilhouette {
+  int frame = 0;
+  int vehicle_id = 0;
+  bool is_box = false;
+  Eigen::Matrix2Xd points;  // the polygon (2 x n), or for a box (x, y) and (w, h) as 2 columns
+};
+
+// InvalidArgument "PATH:LINE: ..." naming the field for a malformed line (not a number, NaN, a
+// frame < 1, an odd number of coordinates, fewer than 3 vertices, w or h <= 0); IoError for a
+// missing or unreadable file.
+std::vector<VehicleSilhouette> read_vehicle_observations(const std::string& path);
+
+// Runs the estimator over the silhouettes in file order; a silhouette the geometry refuses (one
+// crossing the horizon) is an InvalidArgument naming the vehicle and the frame.
+std::vector<filters::VehicleEstimate> estimate_vehicles(filters::VehicleDimensionEstimator& estimator,
+                                                        const std::vector<VehicleSilhouette>& silhouettes);
+
+// Writes vehicles.csv (above) through write_text_atomically; `models` names the classes.
+void write_vehicles_csv(const std::string& path, const std::vector<filters::VehicleEstimate>& estimates);
+
+// ---- video -> vehicles ----------------------------------------------------------------------------
+//
+// The pipeline: the KDE background model (the project's; the paper's own system used an adaptive
+// Gaussian mixture [7], which the KDE model of the mb-tbd paper replaces here: one background
+// subtraction for every pipeline) -> its foreground mask (y < foreground_threshold), closed with a
+// square of blob_closing pixels to join a vehicle's fragments -> connected components of at least
+// min_area pixels as blobs, each with its outer contour (the silhouette: phase 1 measured image
+// boxes 0.4-2.2 m off, outlines exact) -> a blob tracker -> the estimator per vehicle.
+//
+// The tracker. A vehicle on a road is one large blob that moves by a fraction of its own size per
+// frame, in clutter-free foreground; the box GLMB (built for people detections with misses and
+// clutter) is not needed. Each track's box is predicted at constant velocity (so that vehicles
+// crossing in the image keep their identities); each blob continues the track whose predicted box
+// it overlaps most (intersection over union >= min_overlap, greedy in decreasing overlap, so the
+// assignment is deterministic); an unmatched blob starts a track; a track unmatched for more than
+// lost_memory frames ends. Occlusion: a blob covering half or more of the predicted boxes of two
+// or more tracks is those vehicles merged in the image; its outline is no one cuboid's, so it goes
+// to no track and no estimator, and the tracks coast on their predictions until they separate.
+// Vehicles side by side at the same speed for their whole passage stay one blob: one track, the
+// estimator fed a two-vehicle outline (a limitation; benchmarks/vehicles.py counts it). A track
+// matched in fewer than confirm_frames frames is not reported (a flicker of the background).
+struct VehicleBlobParams {
+  double foreground_threshold = 0.5;  // y < this is foreground (y = the KDE background likelihood)
+  int blob_closing = 5;               // pixels, 0/1 = off, else odd
+  int min_area = 150;                 // pixels
+  double min_overlap = 0.2;           // intersection over union to continue a track
+  int lost_memory = 5;                // frames a track may go unmatched (it coasts through merges)
+  int confirm_frames = 3;             // matched frames for a track to be a vehicle
+
+  static const core::ParameterTable<VehicleBlobParams>& table();
+};
+void validate(const VehicleBlobParams& params);
+
+struct VehiclePipelineParams {
+  image::KdeBackgroundParams background;
+  VehicleBlobParams blobs;
+  filters::VehicleEstimatorParams estimator;
+};
+void validate(const VehiclePipelineParams& params);
+// Sets one parameter by name in whichever section has it (background, blobs, estimator; the
+// names are distinct); InvalidArgument naming an unknown one.
+void set_vehicle_parameter(VehiclePipelineParams& params, const std::string& name, const core::ParameterValue& value);
+// Applies a config file's sections background, blobs, estimator and its top-level seed (the
+// estimator's); InvalidArgument for another section.
+void apply_vehicle_config(VehiclePipelineParams& params, const Config& config);
+
+struct VehiclePipelineResult {
+  std::vector<filters::VehicleEstimate> vehicles;  // confirmed tracks, by id (ids from 1, in order of appearance)
+  std::vector<TrackRow> tracks;                    // every vehicle's image box per frame (MOTChallenge rows)
+  long long frames = 0;
+};
+
+// Runs the pipeline over a video file or image folder. The camera's image size, when given, must
+// be the video's. IoError for an unreadable or empty video; `render` (a .avi/.mp4/.mkv or "")
+// also writes the video with each vehicle's outline, id and running class.
+VehiclePipelineResult measure_vehicles(const std::string& video, const models::Camera& camera,
+                                       std::vector<models::VehicleModel> models, const VehiclePipelineParams& params,
+                                       const std::string& render = {}, const FrameProgress& progress = {});
+
+}  // namespace vtrack::apps

@@ -1,0 +1,440 @@
+#include "vtrack/apps/vehicles.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <climits>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <tuple>
+#include <memory>
+
+#include <opencv2/imgproc.hpp>
+
+#include "vtrack/apps/mot_files.hpp"
+#include "vtrack/apps/video_writer.hpp"
+#include "vtrack/core/errors.hpp"
+#include "vtrack/core/interrupt.hpp"
+#include "vtrack/core/limits.hpp"
+
+namespace vtrack::apps {
+namespace {
+
+std::string trimmed(const std::string& s) {
+  const auto first = s.find_first_not_of(" \t\r");
+  if (first == std::string::npos) return {};
+  const auto last = s.find_last_not_of(" \t\r");
+  return s.substr(first, last - first + 1);
+}
+
+double number(const std::string& field, const std::string& name, const std::string& where) {
+  const std::string text = trimmed(field);
+  char* end = nullptr;
+  const double v = text.empty() ? 0.0 : std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size()) {
+    throw InvalidArgument(where + name + " is not a number: '" + text + "'");
+  }
+  if (!std::isfinite(v)) throw InvalidArgument(where + name + " must be finite, got " + text);
+  return v;
+}
+
+int whole(const std::string& field, const char* name, const std::string& where, int lowest) {
+  const double v = number(field, name, where);
+  if (v != std::floor(v) || v < lowest || v > INT_MAX) {
+    throw InvalidArgument(where + name + " must be an integer >= " + std::to_string(lowest) + ", got '" +
+                          trimmed(field) + "'");
+  }
+  return static_cast<int>(v);
+}
+
+VehicleSilhouette parse_line(const std::string& line, const std::string& where) {
+  std::vector<std::string> fields;
+  for (std::size_t start = 0;;) {
+    const std::size_t comma = line.find(',', start);
+    fields.push_back(line.substr(start, comma - start));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  const std::size_t n = fields.size();
+  if (n < 6 || n % 2 != 0) {
+    throw InvalidArgument(where + "expected frame,vehicle_id,x,y,w,h or frame,vehicle_id,x1,y1,...,xn,yn "
+                          "(n >= 3), got " + std::to_string(n) + " fields");
+  }
+  VehicleSilhouette s;
+  s.frame = whole(fields[0], "frame", where, 1);
+  s.vehicle_id = whole(fields[1], "vehicle_id", where, 0);
+  s.is_box = n == 6;
+  s.points.resize(2, static_cast<Eigen::Index>((n - 2) / 2));
+  for (std::size_t i = 2; i < n; ++i) {
+    const std::string name = s.is_box ? std::string(i == 2 ? "x" : i == 3 ? "y" : i == 4 ? "w" : "h")
+                                      : (i % 2 == 0 ? "x" : "y") + std::to_string((i - 2) / 2 + 1);
+    const double v = number(fields[i], name, where);
+    if (std::fabs(v) > core::kMaxCoordinate) {
+      throw InvalidArgument(where + name + " must be within +-1e9 pixels, got " + trimmed(fields[i]));
+    }
+    s.points(static_cast<Eigen::Index>(i % 2), static_cast<Eigen::Index>((i - 2) / 2)) = v;
+  }
+  if (s.is_box && !(s.points(0, 1) > 0.0 && s.points(1, 1) > 0.0)) {
+    throw InvalidArgument(where + "the box's w and h must be > 0, got " + trimmed(fields[4]) + ", " +
+                          trimmed(fields[5]));
+  }
+  return s;
+}
+
+std::string fixed3(double v) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.3f", v);
+  return text;
+}
+
+// A CSV field, quoted (RFC 4180) when a models file gave a class name with a comma or a quote.
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+}  // namespace
+
+std::vector<VehicleSilhouette> read_vehicle_observations(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    throw IoError(std::filesystem::exists(path, ec) ? "observations file '" + path + "' is not a regular file"
+                                                    : "no such observations file: '" + path + "'");
+  }
+  std::ifstream in(path);
+  if (!in) throw IoError("cannot read observations file '" + path + "'");
+  std::vector<VehicleSilhouette> out;
+  std::string line;
+  long long number_of_line = 0;
+  while (std::getline(in, line)) {
+    if ((++number_of_line & 4095) == 0) core::poll_interrupt();
+    const std::string text = trimmed(line);
+    if (text.empty() || text[0] == '#') continue;
+    if (number_of_line == 1 && text.rfind("frame", 0) == 0) continue;  // a header
+    out.push_back(parse_line(text, path + ":" + std::to_string(number_of_line) + ": "));
+  }
+  if (in.bad()) throw IoError("error reading observations file '" + path + "'");
+  return out;
+}
+
+std::vector<filters::VehicleEstimate> estimate_vehicles(filters::VehicleDimensionEstimator& estimator,
+                                                        const std::vector<VehicleSilhouette>& silhouettes) {
+  std::size_t done = 0;
+  for (const auto& s : silhouettes) {
+    if ((++done & 255) == 0) core::poll_interrupt();
+    try {
+      if (s.is_box) {
+        estimator.update_box(s.vehicle_id, s.frame, s.points(0, 0), s.points(1, 0), s.points(0, 1), s.points(1, 1));
+      } else {
+        estimator.update_polygon(s.vehicle_id, s.frame, s.points);
+      }
+    } catch (const InvalidArgument& e) {
+      throw InvalidArgument("vehicle " + std::to_string(s.vehicle_id) + ", frame " + std::to_string(s.frame) +
+                            ": " + e.what());
+    }
+  }
+  return estimator.estimates();
+}
+
+void write_vehicles_csv(const std::string& path, const std::vector<filters::VehicleEstimate>& estimates) {
+  write_text_atomically(path, [&](std::ostream& out) {
+    out << "vehicle_id,class,light_heavy,W,H,L,first_frame,last_frame,frames_used\n";
+    for (const auto& e : estimates) {
+      out << e.vehicle_id << ',';
+      if (e.valid) {
+        out << csv_field(e.class_name) << ',' << (e.heavy ? "heavy" : "light") << ',' << fixed3(e.dimensions(0)) << ','
+            << fixed3(e.dimensions(1)) << ',' << fixed3(e.dimensions(2));
+      } else {
+        out << "not_fully_in_view,unknown,,,";
+      }
+      out << ',' << e.first_frame << ',' << e.last_frame << ',' << e.frames_used << '\n';
+    }
+  });
+}
+
+}  // namespace vtrack::apps
+
+// ---- video -> vehicles ----------------------------------------------------------------------------
+
+namespace vtrack::apps {
+
+const core::ParameterTable<VehicleBlobParams>& VehicleBlobParams::table() {
+  using P = VehicleBlobParams;
+  static const auto t = core::ParameterTable<P>()
+                            .add("foreground_threshold", &P::foreground_threshold)
+                            .add("blob_closing", &P::blob_closing)
+                            .add("min_area", &P::min_area)
+                            .add("min_overlap", &P::min_overlap)
+                            .add("lost_memory", &P::lost_memory)
+                            .add("confirm_frames", &P::confirm_frames);
+  return t;
+}
+
+void validate(const VehicleBlobParams& p) {
+  require(p.foreground_threshold > 0.0 && p.foreground_threshold <= 1.0, "foreground_threshold",
+          p.foreground_threshold, "in (0, 1]");
+  require(p.blob_closing >= 0 && p.blob_closing <= 255 && (p.blob_closing <= 1 || p.blob_closing % 2 == 1),
+          "blob_closing", p.blob_closing, "0, 1 or an odd number up to 255");
+  require(p.min_area >= 1, "min_area", p.min_area, ">= 1");
+  require(p.min_overlap > 0.0 && p.min_overlap <= 1.0, "min_overlap", p.min_overlap, "in (0, 1]");
+  require(p.lost_memory >= 0 && p.lost_memory <= 1000, "lost_memory", p.lost_memory, "in [0, 1000]");
+  require(p.confirm_frames >= 1 && p.confirm_frames <= 1000, "confirm_frames", p.confirm_frames, "in [1, 1000]");
+}
+
+void validate(const VehiclePipelineParams& p) {
+  image::validate(p.background);
+  validate(p.blobs);
+  filters::validate(p.estimator);
+}
+
+void set_vehicle_parameter(VehiclePipelineParams& p, const std::string& name, const core::ParameterValue& value) {
+  if (filters::VehicleEstimatorParams::table().set(p.estimator, name, value)) return;
+  if (VehicleBlobParams::table().set(p.blobs, name, value)) return;
+  if (image::KdeBackgroundParams::table().set(p.background, name, value)) return;
+  std::vector<std::string> names = filters::VehicleEstimatorParams::table().names();
+  for (const auto& n : VehicleBlobParams::table().names()) names.push_back(n);
+  for (const auto& n : image::KdeBackgroundParams::table().names()) names.push_back(n);
+  core::throw_unknown_parameter(name, "vehicles", names);
+}
+
+void apply_vehicle_config(VehiclePipelineParams& p, const Config& config) {
+  for (const auto& [section, values] : config.sections) {
+    if (section == "background") core::set_parameters(p.background, values, "background");
+    else if (section == "blobs") core::set_parameters(p.blobs, values, "blobs");
+    else if (section == "estimator") core::set_parameters(p.estimator, values, "estimator");
+    else {
+      throw InvalidArgument("config file '" + config.path + "': vehicles reads the sections background, blobs "
+                            "and estimator, got '" + section + "'");
+    }
+  }
+  if (config.seed) p.estimator.seed = *config.seed;
+}
+
+namespace {
+
+struct Blob {
+  cv::Rect box;
+  std::vector<cv::Point> contour;
+};
+
+// Connected components of the closed foreground of at least min_area pixels, with their outer
+// contours (pixel centres).
+std::vector<Blob> find_blobs(const cv::Mat& mask, int min_area, cv::Mat& labels) {
+  cv::Mat stats, centroids;
+  const int n = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
+  std::vector<Blob> out;
+  for (int i = 1; i < n; ++i) {
+    if (stats.at<int>(i, cv::CC_STAT_AREA) < min_area) continue;
+    const cv::Rect box(stats.at<int>(i, cv::CC_STAT_LEFT), stats.at<int>(i, cv::CC_STAT_TOP),
+                       stats.at<int>(i, cv::CC_STAT_WIDTH), stats.at<int>(i, cv::CC_STAT_HEIGHT));
+    cv::Mat one = labels(box) == i;
+    std::vector<std::vector<cv::Point>> contours;
+    cv::findContours(one, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE, box.tl());
+    if (contours.empty()) continue;
+    std::size_t best = 0;
+    for (std::size_t c = 1; c < contours.size(); ++c) {
+      if (contours[c].size() > contours[best].size()) best = c;
+    }
+    out.push_back({box, std::move(contours[best])});
+  }
+  return out;
+}
+
+double overlap(const cv::Rect2d& a, const cv::Rect2d& b) {
+  const double inter = (a & b).area();
+  return inter > 0 ? inter / (a.area() + b.area() - inter) : 0.0;
+}
+
+struct BlobTrack {
+  int id = 0;
+  cv::Rect2d box;          // at last_frame
+  cv::Point2d velocity;    // pixels per frame, of the box's centre
+  long long last_frame = 0;
+  int hits = 0;            // frames matched to a blob of its own
+};
+
+cv::Rect2d predicted(const BlobTrack& t, long long frame) {
+  return t.box + t.velocity * static_cast<double>(frame - t.last_frame);
+}
+
+struct Assignment {
+  std::size_t track = SIZE_MAX;  // index into the tracks
+  bool merged = false;           // the blob covers two or more vehicles: no track of its own
+};
+
+// One frame of the blob tracker (see the header). Tracks are predicted at constant velocity, so
+// that vehicles crossing in the image keep their identities. A blob covering half or more of the
+// predicted boxes of two or more tracks is their merged image: they coast (predicted box, velocity
+// kept) and the blob goes to none. Other blobs continue the track whose predicted box they
+// overlap most (greedy in decreasing intersection over union, >= min_overlap) or start one.
+std::vector<Assignment> associate(std::vector<BlobTrack>& tracks, const std::vector<Blob>& blobs, long long frame,
+                                  const VehicleBlobParams& p, int& next_id) {
+  std::vector<cv::Rect2d> pred;
+  for (const auto& t : tracks) pred.push_back(predicted(t, frame));
+  std::vector<Assignment> out(blobs.size());
+  std::vector<bool> taken(tracks.size(), false);
+  for (std::size_t b = 0; b < blobs.size(); ++b) {
+    std::vector<std::size_t> covered;
+    for (std::size_t t = 0; t < tracks.size(); ++t) {
+      if ((cv::Rect2d(blobs[b].box) & pred[t]).area() >= 0.5 * pred[t].area()) covered.push_back(t);
+    }
+    if (covered.size() < 2) continue;
+    out[b].merged = true;
+    for (std::size_t t : covered) {
+      tracks[t].box = pred[t];
+      tracks[t].last_frame = frame;
+      taken[t] = true;
+    }
+  }
+  struct Pair {
+    double iou;
+    std::size_t blob, track;
+  };
+  std::vector<Pair> pairs;
+  for (std::size_t b = 0; b < blobs.size(); ++b) {
+    for (std::size_t t = 0; t < tracks.size() && !out[b].merged; ++t) {
+      const double iou = overlap(cv::Rect2d(blobs[b].box), pred[t]);
+      if (!taken[t] && iou >= p.min_overlap) pairs.push_back({iou, b, t});
+    }
+  }
+  std::stable_sort(pairs.begin(), pairs.end(), [](const Pair& x, const Pair& y) { return x.iou > y.iou; });
+  for (const auto& pr : pairs) {
+    if (out[pr.blob].track != SIZE_MAX || taken[pr.track]) continue;
+    out[pr.blob].track = pr.track;
+    taken[pr.track] = true;
+  }
+  for (std::size_t b = 0; b < blobs.size(); ++b) {
+    if (out[b].merged) continue;
+    const cv::Rect2d box(blobs[b].box);
+    if (out[b].track == SIZE_MAX) {
+      tracks.push_back({next_id++, box, {0.0, 0.0}, frame, 0});
+      out[b].track = tracks.size() - 1;
+    }
+    BlobTrack& t = tracks[out[b].track];
+    if (t.hits > 0) {
+      const cv::Point2d moved = (box.tl() + box.br() - t.box.tl() - t.box.br()) * 0.5 /
+                                static_cast<double>(frame - t.last_frame);
+      t.velocity = t.hits == 1 ? moved : 0.5 * (t.velocity + moved);
+    }
+    t.box = box;
+    t.last_frame = frame;
+    ++t.hits;
+  }
+  return out;
+}
+
+models::Camera camera_for(const models::Camera& camera, int width, int height) {
+  models::CameraCalibration c = camera.calibration();
+  if (c.image_width > 0 && (c.image_width != width || c.image_height != height)) {
+    throw InvalidArgument("the camera's image_size " + std::to_string(c.image_width) + "x" +
+                          std::to_string(c.image_height) + " is not the video's " + std::to_string(width) + "x" +
+                          std::to_string(height));
+  }
+  c.image_width = width;
+  c.image_height = height;
+  return models::Camera(c);
+}
+
+void draw(cv::Mat& frame, const Blob& blob, int id, const filters::VehicleDimensionEstimator& est) {
+  const cv::Scalar colour((id * 67) % 200 + 55, (id * 131) % 200 + 55, (id * 29) % 200 + 55);
+  cv::polylines(frame, std::vector<std::vector<cv::Point>>{blob.contour}, true, colour, 2);
+  const auto e = est.estimate(id);
+  const std::string label = std::to_string(id) + (e.valid ? " " + e.class_name + (e.heavy ? " H" : " L") : "");
+  cv::putText(frame, label, blob.box.tl() + cv::Point(0, -4), cv::FONT_HERSHEY_SIMPLEX, 0.5, colour, 1);
+}
+
+}  // namespace
+
+VehiclePipelineResult measure_vehicles(const std::string& video, const models::Camera& camera,
+                                       std::vector<models::VehicleModel> models, const VehiclePipelineParams& params,
+                                       const std::string& render, const FrameProgress& progress) {
+  validate(params);
+  VideoSource source(video);
+  filters::VehicleDimensionEstimator estimator(camera_for(camera, source.width(), source.height()), std::move(models),
+                                               params.estimator);
+  image::KdeBackground background(params.background);
+  std::unique_ptr<AtomicVideoWriter> writer;
+  if (!render.empty()) {
+    writer = std::make_unique<AtomicVideoWriter>(render, source.fps() > 0 ? source.fps() : 25.0,
+                                                 cv::Size(source.width(), source.height()));
+  }
+  const cv::Mat kernel = params.blobs.blob_closing > 1
+                             ? cv::getStructuringElement(cv::MORPH_RECT, {params.blobs.blob_closing, params.blobs.blob_closing})
+                             : cv::Mat();
+  VehiclePipelineResult result;
+  std::vector<BlobTrack> tracks;
+  int next_id = 1;
+  cv::Mat frame, y, mask, labels;
+  while (source.read(frame)) {
+    core::poll_interrupt();
+    const long long k = ++result.frames;
+    background.apply(frame, y);
+    image::foreground_mask(y, params.blobs.foreground_threshold, mask);
+    if (!kernel.empty()) cv::morphologyEx(mask, mask, cv::MORPH_CLOSE, kernel);
+    const std::vector<Blob> blobs = find_blobs(mask, params.blobs.min_area, labels);
+    const auto matched = associate(tracks, blobs, k, params.blobs, next_id);
+    for (std::size_t b = 0; b < blobs.size(); ++b) {
+      if (matched[b].merged) continue;  // two or more vehicles in one blob: no one's silhouette
+      const BlobTrack& t = tracks[matched[b].track];
+      const cv::Rect& r = blobs[b].box;
+      // Pixel boxes of whole pixels i0..i1: x = i0 - 0.5, w = i1 - i0 + 1 (continuous coordinates).
+      result.tracks.push_back({k, static_cast<std::uint64_t>(t.id), static_cast<float>(r.x - 0.5),
+                               static_cast<float>(r.y - 0.5), static_cast<float>(r.width),
+                               static_cast<float>(r.height), 1.0});
+      if (blobs[b].contour.size() >= 3) {
+        Eigen::Matrix2Xd poly(2, static_cast<Eigen::Index>(blobs[b].contour.size()));
+        for (std::size_t i = 0; i < blobs[b].contour.size(); ++i) {
+          poly.col(static_cast<Eigen::Index>(i)) << blobs[b].contour[i].x, blobs[b].contour[i].y;
+        }
+        try {
+          estimator.update_polygon(t.id, static_cast<int>(k), poly);
+        } catch (const InvalidArgument&) {
+          // A blob reaching above the horizon (sky, a gantry's structure) is no vehicle on the road.
+        }
+      }
+    }
+    if (writer) {
+      for (std::size_t b = 0; b < blobs.size(); ++b) {
+        if (matched[b].merged) continue;
+        const int id = tracks[matched[b].track].id;
+        if (estimator.next_frame(id) > 1) draw(frame, blobs[b], id, estimator);
+      }
+      writer->write(frame);
+    }
+    tracks.erase(std::remove_if(tracks.begin(), tracks.end(),
+                                [&](const BlobTrack& t) { return k - t.last_frame > params.blobs.lost_memory; }),
+                 tracks.end());
+    if (progress) progress(k, source.expected_frame_count());
+  }
+  if (result.frames == 0) throw IoError("video '" + video + "' has no frames");
+  // Confirmed tracks only, their rows too; a track whose blobs were always merged with another
+  // vehicle's was never fully in view on its own: reported as such.
+  std::map<int, int> hits;
+  std::map<int, std::pair<int, int>> span;
+  for (const auto& r : result.tracks) {
+    const int id = static_cast<int>(r.id);
+    if (hits[id]++ == 0) span[id].first = static_cast<int>(r.frame);
+    span[id].second = static_cast<int>(r.frame);
+  }
+  for (const auto& [id, n] : hits) {
+    if (n < params.blobs.confirm_frames) continue;
+    filters::VehicleEstimate e;
+    if (estimator.next_frame(id) > 1) e = estimator.estimate(id);
+    e.vehicle_id = id;
+    std::tie(e.first_frame, e.last_frame) = span[id];  // the frames seen, merged ones included
+    e.frames_seen = n;
+    result.vehicles.push_back(e);
+  }
+  result.tracks.erase(std::remove_if(result.tracks.begin(), result.tracks.end(),
+                                     [&](const TrackRow& r) { return hits[static_cast<int>(r.id)] < params.blobs.confirm_frames; }),
+                      result.tracks.end());
+  if (writer) writer->commit();
+  return result;
+}
+
+}  // namespace vtrack::apps
