@@ -9,7 +9,7 @@ The main entry points are here; the rest lives in submodules that mirror the C++
 
 ============================  =========================================================
 ``vtrack.pipelines``          :func:`track_video`, :func:`track_detections` (also here)
-``vtrack.trackers``           ``MultiBernoulliTracker``, ``GlmbTracker``, ``BoxTracker``, ``Tracks``
+``vtrack.trackers``           ``MultiBernoulliTracker``, ``ReclusteringSirTracker``, ``GlmbTracker``, ``BoxTracker``, ``Tracks``
 ``vtrack.image``              ``KdeBackground``, morphology, integral images, color histograms
 ``vtrack.detectors``          ``HogPeopleDetector``
 ``vtrack.models``             motion / observation models, the depth likelihood
@@ -52,6 +52,7 @@ from ._core import (
     MCMCParticleFilter,
     MultiBernoulliTracker,
     ParticleFilter,
+    ReclusteringSirTracker,
     Rng,
     Tracks,
     __version__,
@@ -75,6 +76,7 @@ __all__ = [
     "MCMCParticleFilter",
     "MultiBernoulliTracker",
     "ParticleFilter",
+    "ReclusteringSirTracker",
     "Rng",
     "Tracks",
     "__version__",

@@ -11,11 +11,14 @@ filter's own extras (``states``, ``covariances``, GLMB ``labels``).
 tracker                    built with                                       step(...)
 =========================  ===============================================  =====================
 MultiBernoulliTracker      ``(image_size, **params)``                       ``y`` (H x W float32)
+ReclusteringSirTracker     ``(image_size, **params)``                       ``y`` (H x W float32)
 BoxTracker                 ``(image_size, **params)``                       ``boxes`` (M x 4 or 5)
 GlmbTracker                ``(motion, observation, births, **params)``      ``detections`` (M x z)
 =========================  ===============================================  =====================
 """
 
-from ._core import BernoulliComponent, BoxTracker, GlmbTracker, MultiBernoulliTracker, Tracks
+from ._core import (BernoulliComponent, BoxTracker, GlmbTracker, MultiBernoulliTracker,
+                    ReclusteringSirTracker, Tracks, ellipse_log_likelihood)
 
-__all__ = ["BernoulliComponent", "BoxTracker", "GlmbTracker", "MultiBernoulliTracker", "Tracks"]
+__all__ = ["BernoulliComponent", "BoxTracker", "GlmbTracker", "MultiBernoulliTracker",
+           "ReclusteringSirTracker", "Tracks", "ellipse_log_likelihood"]
