@@ -64,6 +64,7 @@ const core::ParameterTable<ReclusteringSirParams>& ReclusteringSirParams::table(
           .add("novelty_threshold", &P::novelty_threshold)
           .add("inject_fraction", &P::inject_fraction)
           .add("min_object_fraction", &P::min_object_fraction)
+          .add("keep_fraction", &P::keep_fraction)
           .add("merge_distance", &P::merge_distance)
           .add("merge_size", &P::merge_size)
           .add("max_misses", &P::max_misses)
@@ -104,6 +105,8 @@ void validate(const ReclusteringSirParams& p) {
           p.inject_fraction, "in [0, 1]");
   require(p.min_object_fraction > 0.0 && p.min_object_fraction <= 10.0, "min_object_fraction",
           p.min_object_fraction, "in (0, 10]");
+  require(p.keep_fraction >= 0.0 && p.keep_fraction <= 10.0, "keep_fraction", p.keep_fraction,
+          "in [0, 10]");
   require(std::isfinite(p.merge_distance) && p.merge_distance >= 0.0, "merge_distance",
           p.merge_distance, ">= 0 and finite");
   require(std::isfinite(p.merge_size) && p.merge_size >= 0.0, "merge_size", p.merge_size,
@@ -453,13 +456,16 @@ void ReclusteringSir::inject() {
   });
   std::vector<int> counts(objects_.size() + 1, 0);
   for (const int c : clusters_) ++counts[std::size_t(c)];
-  const auto k = std::min<std::size_t>(
-      novel.size(), std::size_t(std::ceil(params_.inject_fraction * double(n))));
+  // At most k particles are injected; candidates that neither join nor found an object (drawn
+  // on a noise speck) take no slot, so up to kCandidates k are drawn.
+  constexpr std::size_t kCandidates = 4;
+  const auto k = std::size_t(std::ceil(params_.inject_fraction * double(n)));
   if (k == 0) return;
-  std::vector<std::int64_t> drawn(k);
+  std::vector<std::int64_t> drawn(kCandidates * k);
   core::resample(core::ResamplingScheme::Multinomial,
-                 Eigen::Map<const Eigen::VectorXd>(novelty.data(), Eigen::Index(novelty.size())), k,
-                 rng_, drawn.data());
+                 Eigen::Map<const Eigen::VectorXd>(novelty.data(), Eigen::Index(novelty.size())),
+                 drawn.size(), rng_, drawn.data());
+  std::size_t injected = 0;
   const double hw = 0.5 * params_.size_aspect * person_h_, hh = 0.5 * person_h_;
   const double sxy = params_.sigma_xy * person_h_, sv = params_.sigma_velocity * person_h_;
   std::size_t next_slot = 0;
@@ -495,7 +501,8 @@ void ReclusteringSir::inject() {
       if (ci == 0 || counts[ci] > 1) break;
       ++next_slot;
     }
-    if (next_slot == order.size()) break;
+    if (next_slot == order.size() || injected == k) break;
+    ++injected;
     const Eigen::Index slot = order[next_slot++];
     if (counts.size() < objects_.size() + 1) counts.resize(objects_.size() + 1, 0);
     --counts[std::size_t(clusters_[std::size_t(slot)])];
@@ -562,7 +569,7 @@ void ReclusteringSir::recluster() {
     }
   }
   // Too few measurements for max_misses steps: the object releases its particles and ends.
-  const double min_points = params_.min_object_fraction * expected_points();
+  const double min_points = params_.keep_fraction * expected_points();
   for (std::size_t k = 0; k < m; ++k) {
     const bool old = k + 1 < members_.size();  // existed at the association
     objects_[k].misses = old && double(members_[k + 1].size()) < min_points
