@@ -413,7 +413,8 @@ void ReclusteringSir::inject() {
   const float gate2 = float(params_.gate * params_.gate);
   // Where a particle at state s goes (§2 re-clustering): the nearest object whose gate holds its
   // centre; else a new object if its ellipse holds min_points novel measurements; else nowhere.
-  auto place = [&](const Eigen::Matrix<float, 6, 1>& s) {
+  // The nearest object whose gate holds the centre of state s (index + 1), or 0.
+  auto gate_of = [&](const Eigen::Matrix<float, 6, 1>& s) {
     float best = gate2;
     int k_best = -1;
     for (std::size_t k = 0; k < objects_.size(); ++k) {
@@ -423,7 +424,10 @@ void ReclusteringSir::inject() {
         k_best = int(k);
       }
     }
-    if (k_best >= 0) return k_best + 1;
+    return k_best + 1;
+  };
+  // A new object at s if its ellipse holds min_points novel measurements (its index + 1), or -1.
+  auto found = [&](const Eigen::Matrix<float, 6, 1>& s) {
     int inside = 0;
     for (const int j : novel) inside += ellipse_d2(s, z_(0, j), z_(1, j)) <= 1.0f ? 1 : 0;
     if (double(inside) < min_points) return -1;
@@ -433,6 +437,12 @@ void ReclusteringSir::inject() {
     o.estimate = s;
     objects_.push_back(o);
     return int(objects_.size());
+  };
+  // Where a particle at state s goes (§2 re-clustering): the nearest object whose gate holds its
+  // centre; else a new object if its ellipse holds min_points novel measurements; else nowhere.
+  auto place = [&](const Eigen::Matrix<float, 6, 1>& s) {
+    const int c = gate_of(s);
+    return c > 0 ? c : found(s);
   };
   Particles::States x = particles_.states();
   Eigen::VectorXd lw = particles_.log_weights();
@@ -469,6 +479,25 @@ void ReclusteringSir::inject() {
   const double hw = 0.5 * params_.size_aspect * person_h_, hh = 0.5 * person_h_;
   const double sxy = params_.sigma_xy * person_h_, sv = params_.sigma_velocity * person_h_;
   std::size_t next_slot = 0;
+  // Puts s into the lowest-weighted particle whose cluster keeps another one, in cluster c.
+  auto take_slot = [&](const Eigen::Matrix<float, 6, 1>& s, int c) {
+    while (next_slot < order.size()) {
+      const auto ci = std::size_t(clusters_[std::size_t(order[next_slot])]);
+      if (ci == 0 || counts[ci] > 1) break;
+      ++next_slot;
+    }
+    if (next_slot == order.size() || injected == k) return false;
+    ++injected;
+    const Eigen::Index slot = order[next_slot++];
+    if (counts.size() < objects_.size() + 1) counts.resize(objects_.size() + 1, 0);
+    --counts[std::size_t(clusters_[std::size_t(slot)])];
+    ++counts[std::size_t(c)];
+    x.row(slot) = s.transpose();
+    clusters_[std::size_t(slot)] = c;
+    lw[slot] = -std::log(double(n));
+    return true;
+  };
+  std::vector<Eigen::Matrix<float, 6, 1>> joins;
   for (const std::int64_t d : drawn) {
     // Near the drawn measurement: at the centroid of the novel measurements within a person's
     // ellipse of it (two mean-shift steps), so that the injections drawn from one person's
@@ -492,24 +521,18 @@ void ReclusteringSir::inject() {
                          params_.size_max * hw)),
         float(std::clamp(hh * (1.0 + params_.size_std * rng_.normal()), params_.size_min * hh,
                          params_.size_max * hh));
-    const int c = place(s);
-    if (c < 0) continue;
-    // The lowest-weighted particle whose cluster keeps another one.
-    while (next_slot < order.size()) {
-      const Eigen::Index i = order[next_slot];
-      const auto ci = std::size_t(clusters_[std::size_t(i)]);
-      if (ci == 0 || counts[ci] > 1) break;
-      ++next_slot;
+    // Candidates that start objects take slots first, then those joining one: the draws come
+    // in measurement (raster) order, and joins into the objects above would otherwise use up
+    // the slots before a new person lower in the image is reached.
+    if (gate_of(s) > 0) {
+      joins.push_back(s);
+      continue;
     }
-    if (next_slot == order.size() || injected == k) break;
-    ++injected;
-    const Eigen::Index slot = order[next_slot++];
-    if (counts.size() < objects_.size() + 1) counts.resize(objects_.size() + 1, 0);
-    --counts[std::size_t(clusters_[std::size_t(slot)])];
-    ++counts[std::size_t(c)];
-    x.row(slot) = s.transpose();
-    clusters_[std::size_t(slot)] = c;
-    lw[slot] = -std::log(double(n));
+    const int c = found(s);
+    if (c > 0 && !take_slot(s, c)) break;
+  }
+  for (const auto& s : joins) {
+    if (!take_slot(s, gate_of(s))) break;
   }
   particles_ = Particles(std::move(x), lw);  // normalises the weights
 }
