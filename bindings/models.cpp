@@ -1,4 +1,5 @@
 // Bindings of vtrack::models: linear-Gaussian motion and observation models, the depth likelihood.
+#include <limits>
 #include <optional>
 #include <utility>
 
@@ -8,6 +9,8 @@
 #include "vtrack/core/limits.hpp"
 #include "vtrack/models/depth_likelihood.hpp"
 #include "vtrack/models/linear_gaussian.hpp"
+#include "vtrack/models/person_size.hpp"
+#include "guard.hpp"
 
 namespace vtrack::bindings {
 
@@ -178,11 +181,57 @@ The tempered log ratio of eq. (4), log prod_{T(x)} phi_i / varphi_i times temper
   def_params<DepthLikelihoodParams>(depth, [](const DepthLikelihood& d) { return d.params(); });
 }
 
+void bind_person_size(py::module_& m) {
+  using models::ForegroundSizeEstimator;
+  py::class_<ForegroundSizeEstimator>(m, "ForegroundSizeEstimator", R"doc(
+How tall the people of a scene are, learnt from its background-subtracted images (the
+MultiBernoulliTracker's learnt size prior; cpp/include/vtrack/models/person_size.hpp): observe(y)
+counts the connected components of y < threshold that do not touch the image's top or
+bottom border;
+person_height is the median height of the components big enough to be a whole person, each
+counted once (a group merged into one component counts once, not by its area).
+half_life: observed frames (inf = never forget); min_area_fraction: the smallest component
+counted, as a fraction of the image; aspect: a person's width / height.
+)doc")
+      .def(py::init([](const py::handle& half_life, const py::handle& min_area_fraction,
+                       const py::handle& aspect) {
+             return ForegroundSizeEstimator(real_arg(half_life, "half_life"),
+                                            real_arg(min_area_fraction, "min_area_fraction"),
+                                            real_arg(aspect, "aspect"));
+           }),
+           py::kw_only(), py::arg("half_life") = std::numeric_limits<double>::infinity(),
+           py::arg("min_area_fraction") = 1e-4, py::arg("aspect") = 0.35)
+      .def(
+          "observe",
+          [](ForegroundSizeEstimator& e, const py::handle& y, const py::handle& threshold) {
+            py::array keep;
+            const cv::Mat img = gray_image(y, "y", keep);
+            if (img.type() != CV_32FC1) {
+              throw py::type_error("y must have dtype float32, got " +
+                                   py::str(keep.dtype()).cast<std::string>());
+            }
+            const auto t = static_cast<float>(real_arg(threshold, "threshold"));
+            ObjectGuard guard(&e);
+            py::gil_scoped_release release;
+            e.observe(img, t);
+          },
+          py::arg("y"), py::kw_only(), py::arg("threshold") = 0.5,
+          "Count the foreground components of y (H x W float32, near 1 = background).")
+      .def_property_readonly("person_height", guarded(&ForegroundSizeEstimator::person_height),
+                             "The learnt person height (px); 0 before any component.")
+      .def_property_readonly("weight", guarded(&ForegroundSizeEstimator::weight),
+                             "The (decayed) total area of the components counted (px).")
+      .def_property_readonly("frames", guarded(&ForegroundSizeEstimator::frames),
+                             "Number of images observed.")
+      .def("reset", guarded(&ForegroundSizeEstimator::reset));
+}
+
 }  // namespace
 
 void bind_models(py::module_& m) {
   bind_linear_gaussian(m);
   bind_depth_likelihood(m);
+  bind_person_size(m);
 }
 
 }  // namespace vtrack::bindings

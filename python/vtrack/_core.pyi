@@ -186,6 +186,19 @@ class LinearGaussianObservation:
 def kinect_raw_to_depth(raw: ArrayLike, fx: ArrayLike = 525.0) -> Any: ...
 def kinect_depth_to_raw(depth: ArrayLike, fx: ArrayLike = 525.0) -> Any: ...
 
+class ForegroundSizeEstimator:
+    def __init__(
+        self, *, half_life: float = ..., min_area_fraction: float = 1e-4, aspect: float = 0.35
+    ) -> None: ...
+    def observe(self, y: npt.NDArray[np.float32], *, threshold: float = 0.5) -> None: ...
+    @property
+    def person_height(self) -> float: ...
+    @property
+    def weight(self) -> float: ...
+    @property
+    def frames(self) -> int: ...
+    def reset(self) -> None: ...
+
 class DepthLikelihood:
     def __init__(
         self,
@@ -355,7 +368,7 @@ class MultiBernoulliTracker:
         height_mean: float = 0.0,
         width_mean: float = 0.0,
         size_aspect: float = 0.35,
-        size_from_foreground: float = 0.94,
+        size_from_foreground: float = 1.06,
         size_initial: float = 0.15,
         size_half_life: float = 0.0,
         size_std: float = 0.25,

@@ -1,7 +1,8 @@
 """Motion and observation models (the C++ ``models`` layer): linear-Gaussian motion (e.g. the
 constant-velocity model of the RGB-D GLMB paper, eq. 7) and observation (eq. 2), the depth-intensity
 likelihood of the RGB-D switching observation model (eq. 4, with the Kinect raw-to-metric
-conversion of eq. 3), and the particle filters' models (``vtrack.smc``): ``LinearTransition`` and
+conversion of eq. 3), the ``ForegroundSizeEstimator`` that learns how tall a scene's people are
+from its foreground (the multi-Bernoulli tracker's size prior), and the particle filters' models (``vtrack.smc``): ``LinearTransition`` and
 its forms ``RandomWalk`` (mb-tbd eq. 22), ``ConstantVelocity`` (discrete or continuous
 white-noise acceleration) and ``SecondOrderAutoRegressive`` (part-based eq. 13), and the
 ``RangeBearingObservation``.
@@ -10,6 +11,7 @@ white-noise acceleration) and ``SecondOrderAutoRegressive`` (part-based eq. 13),
 from ._core import (
     ConstantVelocity,
     DepthLikelihood,
+    ForegroundSizeEstimator,
     LinearGaussianMotion,
     LinearGaussianObservation,
     LinearTransition,
@@ -23,6 +25,7 @@ from ._core import (
 __all__ = [
     "ConstantVelocity",
     "DepthLikelihood",
+    "ForegroundSizeEstimator",
     "LinearGaussianMotion",
     "LinearGaussianObservation",
     "LinearTransition",

@@ -178,7 +178,8 @@ MultiBernoulliFilter::MultiBernoulliFilter(int width, int height,
     : params_(validated(params)), width_(width), height_(height), rng_(params.seed),
       likelihood_(params.likelihood),
       size_estimator_(params.size_half_life > 0.0 ? params.size_half_life
-                                                  : std::numeric_limits<double>::infinity()),
+                                                  : std::numeric_limits<double>::infinity(),
+                      1e-4, params.size_aspect),
       management_(params.management) {
   if (width < 1) throw InvalidArgument("width must be >= 1, got " + std::to_string(width));
   if (height < 1) throw InvalidArgument("height must be >= 1, got " + std::to_string(height));
@@ -201,7 +202,7 @@ void MultiBernoulliFilter::update_size_prior() {
   // Evidence: components adding up to one person of the current prior (the first frames of a
   // video with people in view; a scene without motion keeps the initial guess).
   if (!size_.learnt && size_estimator_.weight() < size_.width * size_.height) return;
-  const double h = params_.size_from_foreground * size_estimator_.median_height();
+  const double h = params_.size_from_foreground * size_estimator_.person_height();
   if (!(h > 0.0)) return;
   PersonSizePrior size = person_size_prior(params_, params_.width_mean, h);
   size.learnt = true;

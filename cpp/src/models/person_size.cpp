@@ -10,17 +10,47 @@
 
 namespace vtrack::models {
 
-ForegroundSizeEstimator::ForegroundSizeEstimator(double half_life, double min_area_fraction)
-    : min_area_fraction_(min_area_fraction) {
+namespace {
+
+int log2_bin(double value, int bins_per_octave, int bins) {
+  return std::clamp(static_cast<int>(std::log2(value) * bins_per_octave), 0, bins - 1);
+}
+
+// The value at which the cumulative weight of a log2-binned histogram reaches half its total,
+// interpolated linearly in log2 within the bin; 0 for an empty histogram.
+double log2_binned_median(const std::vector<double>& histogram, int bins_per_octave) {
+  double total = 0.0;
+  for (double h : histogram) total += h;
+  if (!(total > 0.0)) return 0.0;
+  const double half = 0.5 * total;
+  double below = 0.0;
+  for (std::size_t b = 0; b < histogram.size(); ++b) {
+    if (below + histogram[b] >= half && histogram[b] > 0.0) {
+      const double frac = (half - below) / histogram[b];
+      return std::exp2((static_cast<double>(b) + frac) / bins_per_octave);
+    }
+    below += histogram[b];
+  }
+  return std::exp2(static_cast<double>(histogram.size()) / bins_per_octave);
+}
+
+}  // namespace
+
+ForegroundSizeEstimator::ForegroundSizeEstimator(double half_life, double min_area_fraction,
+                                                 double aspect)
+    : min_area_fraction_(min_area_fraction), aspect_(aspect) {
   require(half_life > 0.0, "half_life", half_life, "> 0");
   require(min_area_fraction >= 0.0 && min_area_fraction < 1.0, "min_area_fraction",
           min_area_fraction, "in [0, 1)");
+  require(aspect > 0.0 && std::isfinite(aspect), "aspect", aspect, "> 0 and finite");
   decay_ = std::isinf(half_life) ? 1.0 : std::exp2(-1.0 / half_life);
-  histogram_.assign(kBinsPerOctave * kOctaves, 0.0);
+  area_by_height_.assign(kHeightBins, 0.0);
+  count_.assign(static_cast<std::size_t>(kHeightBins) * kAreaBins, 0.0);
 }
 
 void ForegroundSizeEstimator::reset() {
-  std::fill(histogram_.begin(), histogram_.end(), 0.0);
+  std::fill(area_by_height_.begin(), area_by_height_.end(), 0.0);
+  std::fill(count_.begin(), count_.end(), 0.0);
   weight_ = 0.0;
   frames_ = 0;
 }
@@ -32,37 +62,52 @@ void ForegroundSizeEstimator::observe(const cv::Mat& y, float threshold) {
   cv::compare(y, threshold, mask_, cv::CMP_LT);
   const int n = cv::connectedComponentsWithStats(mask_, labels_, stats_, centroids_, 8, CV_32S);
   if (decay_ < 1.0) {
-    for (double& h : histogram_) h *= decay_;
+    for (double& a : area_by_height_) a *= decay_;
+    for (double& c : count_) c *= decay_;
     weight_ *= decay_;
   }
-  const double min_area = min_area_fraction_ * static_cast<double>(y.total());
-  const int bins = static_cast<int>(histogram_.size());
+  const double min_area = std::max(min_area_fraction_ * static_cast<double>(y.total()), 1.0);
   for (int i = 1; i < n; ++i) {  // label 0 is the background
-    const double area = stats_.at<int>(i, cv::CC_STAT_AREA);
-    if (area < std::max(min_area, 1.0)) continue;
-    const double height = stats_.at<int>(i, cv::CC_STAT_HEIGHT);
-    const int bin = std::clamp(static_cast<int>(std::log2(height) * kBinsPerOctave), 0, bins - 1);
-    histogram_[static_cast<std::size_t>(bin)] += area;
+    const int* s = stats_.ptr<int>(i);
+    const double area = s[cv::CC_STAT_AREA];
+    // A component cut by the top or bottom border has lost height (one cut at the sides has not).
+    const bool height_cut = s[cv::CC_STAT_TOP] == 0 ||
+                            s[cv::CC_STAT_TOP] + s[cv::CC_STAT_HEIGHT] == y.rows;
+    if (area < min_area || height_cut) continue;
+    const int hb = log2_bin(s[cv::CC_STAT_HEIGHT], kHeightBinsPerOctave, kHeightBins);
+    const int ab = log2_bin(area, kAreaBinsPerOctave, kAreaBins);
+    area_by_height_[static_cast<std::size_t>(hb)] += area;
+    count_[static_cast<std::size_t>(hb) * kAreaBins + static_cast<std::size_t>(ab)] += 1.0;
     weight_ += area;
   }
   ++frames_;
 }
 
-double ForegroundSizeEstimator::median_height() const {
-  double total = 0.0;
-  for (double h : histogram_) total += h;
-  if (!(total > 0.0)) return 0.0;
-  const double half = 0.5 * total;
-  double below = 0.0;
-  for (std::size_t b = 0; b < histogram_.size(); ++b) {
-    if (below + histogram_[b] >= half && histogram_[b] > 0.0) {
-      // Linear within the bin's log2 range [b, b + 1) / kBinsPerOctave.
-      const double frac = (half - below) / histogram_[b];
-      return std::exp2((static_cast<double>(b) + frac) / kBinsPerOctave);
-    }
-    below += histogram_[b];
+double ForegroundSizeEstimator::area_weighted_median_height() const {
+  return log2_binned_median(area_by_height_, kHeightBinsPerOctave);
+}
+
+double ForegroundSizeEstimator::count_median_height(double min_area) const {
+  // Area bins from the one holding min_area on (a component of that bin is within 1/8 octave of
+  // it: the threshold only has to separate specks from people, so a bin's resolution suffices).
+  const int first = log2_bin(std::max(min_area, 1.0), kAreaBinsPerOctave, kAreaBins);
+  std::vector<double> by_height(kHeightBins, 0.0);
+  for (int hb = 0; hb < kHeightBins; ++hb) {
+    const double* row = &count_[static_cast<std::size_t>(hb) * kAreaBins];
+    for (int ab = first; ab < kAreaBins; ++ab) by_height[static_cast<std::size_t>(hb)] += row[ab];
   }
-  return std::exp2(static_cast<double>(histogram_.size()) / kBinsPerOctave);
+  return log2_binned_median(by_height, kHeightBinsPerOctave);
+}
+
+double ForegroundSizeEstimator::person_height() const {
+  const double anchor = area_weighted_median_height();
+  if (!(anchor > 0.0)) return 0.0;
+  // The area of a person of height h (see the header for the two passes).
+  auto person_area = [this](double h) { return aspect_ * h * h; };
+  const double first = count_median_height(person_area(anchor / 3.0));
+  if (!(first > 0.0)) return anchor;
+  const double second = count_median_height(person_area(first / 2.0));
+  return second > 0.0 ? second : first;
 }
 
 }  // namespace vtrack::models

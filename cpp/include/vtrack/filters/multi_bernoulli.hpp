@@ -53,8 +53,9 @@ struct MultiBernoulliParams {
   // values divided by 85 (or by the width 30).
   //
   // The prior's mean size. height_mean: pixels, or 0 (default) to learn it from the scene's own
-  // foreground (models/person_size.hpp): h = size_from_foreground x the area-weighted median
-  // height of the foreground's connected components (y < 0.5 after the likelihood's closing),
+  // foreground (models/person_size.hpp): h = size_from_foreground x the median height of the
+  // foreground's connected components big enough to be a person, each counted once (y < 0.5
+  // after the likelihood's closing; components cut by the top or bottom border are not counted),
   // observed every frame and kept for the whole video (size_half_life 0, the default) or forgotten
   // with a half-life of size_half_life frames (a camera that zooms); until the
   // components seen add up to the area of one person of the current prior, h = size_initial x
@@ -71,10 +72,11 @@ struct MultiBernoulliParams {
   // 30 x 85 px on average (0.35). The width is not learnt: people walking side by side merge into
   // one wide foreground component far more often than into a tall one.
   double size_aspect = 0.35;
-  // h = size_from_foreground x the area-weighted median foreground component height: 85 / 90 px
-  // on PETS09-S2L1's first 50 frames at 768 x 576 (KDE y), so that the learnt prior there is the
-  // former fixed one. (The median over all its frames is 93 px.)
-  double size_from_foreground = 0.94;
+  // h = size_from_foreground x the learnt person height (ForegroundSizeEstimator): a foreground
+  // component is a little shorter than the annotated box around the person (feet and head blend
+  // into the background). Tuned on PETS09-S2L1 frames 1-397 at 768 x 576 (the sweep is in
+  // benchmarks/person_size.py).
+  double size_from_foreground = 1.06;
   double size_initial = 0.15;      // h / image height before the foreground says (85 / 576)
   // Frames, >= 0; 0 = never forget. Measured (benchmarks/pets09.py, MB MOTA / IDF1, seed 0; all
   // frames / 398-795): at 768 x 576 a half-life of 100 frames gave 0.374 / 0.433 and 0.228 / 0.331,
