@@ -444,7 +444,7 @@ class ReclusteringSirTracker:
         max_misses: int = 3,
         height_mean: float = 0.0,
         size_aspect: float = 0.35,
-        size_from_foreground: float = 0.94,
+        size_from_foreground: float = 1.06,
         size_initial: float = 0.15,
         size_min: float = 0.45,
         size_max: float = 2.0,
@@ -455,10 +455,10 @@ class ReclusteringSirTracker:
         confirm_frames: int = 5,
         lost_memory: int = 30,
         relabel_overlap: float = 0.3,
-        box_scale_w: float = 1.1,
-        box_scale_h: float = 0.95,
+        box_scale_w: float = 0.98,
+        box_scale_h: float = 0.96,
         box_offset_x: float = 0.0,
-        box_offset_y: float = -0.04,
+        box_offset_y: float = 0.03,
         seed: int = 0,
     ) -> None: ...
     def step(self, y: npt.NDArray[np.float32]) -> Tracks: ...

@@ -184,7 +184,7 @@ double ellipse_log_likelihood(float cx, float cy, float a, float b,
 
 ReclusteringSir::ReclusteringSir(int width, int height, const ReclusteringSirParams& params)
     : params_(validated(params)), width_(width), height_(height), rng_(params.seed),
-      size_estimator_(std::numeric_limits<double>::infinity()),
+      size_estimator_(std::numeric_limits<double>::infinity(), 1e-4, params.size_aspect),
       motion_(make_motion(0, 0, 0)), management_(params.management) {
   if (width < 1) throw InvalidArgument("width must be >= 1, got " + std::to_string(width));
   if (height < 1) throw InvalidArgument("height must be >= 1, got " + std::to_string(height));
@@ -265,7 +265,7 @@ const Tracks& ReclusteringSir::step(const cv::Mat& y) {
     size_estimator_.observe(y, float(params_.foreground_threshold));
     const double area = params_.size_aspect * person_h_ * person_h_;
     if (size_learnt_ || size_estimator_.weight() >= area) {
-      const double h = params_.size_from_foreground * size_estimator_.median_height();
+      const double h = params_.size_from_foreground * size_estimator_.person_height();
       if (h > 0.0) {
         size_learnt_ = true;
         set_person_height(h);
