@@ -293,21 +293,12 @@ void ReclusteringSir::predict() {
 void ReclusteringSir::associate() {
   // Nearest object estimate in its own normalised distance, within the gate; else Z^0.
   const Eigen::Index n = z_.cols();
-  const float gate2 = float(params_.gate * params_.gate);
   members_.assign(objects_.size() + 1, {});
   assoc_.assign(std::size_t(n), 0);
   for (Eigen::Index j = 0; j < n; ++j) {
-    float best = gate2;
-    int k_best = -1;
-    for (std::size_t k = 0; k < objects_.size(); ++k) {
-      const float d2 = gate_d2(objects_[k], z_(0, j), z_(1, j));
-      if (d2 <= best) {
-        best = d2;
-        k_best = int(k);
-      }
-    }
-    assoc_[std::size_t(j)] = k_best + 1;
-    members_[std::size_t(k_best + 1)].push_back(int(j));
+    const int c = nearest_gate(z_(0, j), z_(1, j));
+    assoc_[std::size_t(j)] = c;
+    members_[std::size_t(c)].push_back(int(j));
   }
   zsets_.resize(members_.size());
   for (std::size_t m = 0; m < members_.size(); ++m) {
@@ -390,14 +381,14 @@ void ReclusteringSir::update_estimates() {
   }
 }
 
-void ReclusteringSir::inject() {
+void ReclusteringSir::novel_measurements(std::vector<int>& novel,
+                                         std::vector<double>& novelty) const {
   // The novelty distribution n(z_j) = prod_m (1 - h(z_j | xhat_m)) over the objects' estimates.
-  const Eigen::Index n_z = z_.cols();
   const float sx = float(params_.novelty_sigma * 0.5 * params_.size_aspect * person_h_);
   const float sy = float(params_.novelty_sigma * 0.5 * person_h_);
-  std::vector<int> novel;
-  std::vector<double> novelty;
-  for (Eigen::Index j = 0; j < n_z; ++j) {
+  novel.clear();
+  novelty.clear();
+  for (Eigen::Index j = 0; j < z_.cols(); ++j) {
     double nz = 1.0;
     for (const auto& o : objects_) {
       const float dx = (z_(0, j) - o.estimate[0]) / sx, dy = (z_(1, j) - o.estimate[1]) / sy;
@@ -408,24 +399,47 @@ void ReclusteringSir::inject() {
       novelty.push_back(nz);
     }
   }
+}
+
+Eigen::Vector2f ReclusteringSir::novel_centroid(const std::vector<int>& novel,
+                                                Eigen::Vector2f centre) const {
+  // Two mean-shift steps: the centroid of the novel measurements within a person's ellipse.
+  const double hw = 0.5 * params_.size_aspect * person_h_, hh = 0.5 * person_h_;
+  for (int it = 0; it < 2; ++it) {
+    Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+    int count = 0;
+    for (const int j : novel) {
+      const double dx = (z_(0, j) - centre[0]) / hw, dy = (z_(1, j) - centre[1]) / hh;
+      if (dx * dx + dy * dy > 1.0) continue;
+      sum += z_.col(j).cast<double>();
+      ++count;
+    }
+    if (count > 0) centre = (sum / count).cast<float>();
+  }
+  return centre;
+}
+
+int ReclusteringSir::nearest_gate(float x, float y) const {
+  float best = float(params_.gate * params_.gate);
+  int k_best = -1;
+  for (std::size_t k = 0; k < objects_.size(); ++k) {
+    const float d2 = gate_d2(objects_[k], x, y);
+    if (d2 <= best) {
+      best = d2;
+      k_best = int(k);
+    }
+  }
+  return k_best + 1;
+}
+
+void ReclusteringSir::inject() {
+  std::vector<int> novel;
+  std::vector<double> novelty;
+  novel_measurements(novel, novelty);
   const double min_points = std::max(1.0, params_.min_object_fraction * expected_points());
   if (double(novel.size()) < min_points) return;
-  const float gate2 = float(params_.gate * params_.gate);
-  // Where a particle at state s goes (§2 re-clustering): the nearest object whose gate holds its
-  // centre; else a new object if its ellipse holds min_points novel measurements; else nowhere.
   // The nearest object whose gate holds the centre of state s (index + 1), or 0.
-  auto gate_of = [&](const Eigen::Matrix<float, 6, 1>& s) {
-    float best = gate2;
-    int k_best = -1;
-    for (std::size_t k = 0; k < objects_.size(); ++k) {
-      const float d2 = gate_d2(objects_[k], s[0], s[1]);
-      if (d2 <= best) {
-        best = d2;
-        k_best = int(k);
-      }
-    }
-    return k_best + 1;
-  };
+  auto gate_of = [&](const Eigen::Matrix<float, 6, 1>& s) { return nearest_gate(s[0], s[1]); };
   // A new object at s if its ellipse holds min_points novel measurements (its index + 1), or -1.
   auto found = [&](const Eigen::Matrix<float, 6, 1>& s) {
     int inside = 0;
@@ -500,20 +514,9 @@ void ReclusteringSir::inject() {
   std::vector<Eigen::Matrix<float, 6, 1>> joins;
   for (const std::int64_t d : drawn) {
     // Near the drawn measurement: at the centroid of the novel measurements within a person's
-    // ellipse of it (two mean-shift steps), so that the injections drawn from one person's
-    // pixels land near one centre and found one object, not one per body part.
-    Eigen::Vector2f centre = z_.col(novel[std::size_t(d)]);
-    for (int it = 0; it < 2; ++it) {
-      Eigen::Vector2d sum = Eigen::Vector2d::Zero();
-      int count = 0;
-      for (const int j : novel) {
-        const double dx = (z_(0, j) - centre[0]) / hw, dy = (z_(1, j) - centre[1]) / hh;
-        if (dx * dx + dy * dy > 1.0) continue;
-        sum += z_.col(j).cast<double>();
-        ++count;
-      }
-      if (count > 0) centre = (sum / count).cast<float>();
-    }
+    // ellipse of it, so that the injections drawn from one person's pixels land near one centre
+    // and found one object, not one per body part.
+    const Eigen::Vector2f centre = novel_centroid(novel, z_.col(novel[std::size_t(d)]));
     Eigen::Matrix<float, 6, 1> s;
     s << float(centre[0] + sxy * rng_.normal()), float(centre[1] + sxy * rng_.normal()),
         float(sv * rng_.normal()), float(sv * rng_.normal()),
@@ -538,21 +541,11 @@ void ReclusteringSir::inject() {
 }
 
 void ReclusteringSir::recluster() {
-  const float gate2 = float(params_.gate * params_.gate);
   const std::size_t m = objects_.size();
   // Every particle joins the object whose estimate is nearest among those whose gate holds it.
   const auto& x = particles_.states();
   for (Eigen::Index i = 0; i < x.rows(); ++i) {
-    float best = gate2;
-    int k_best = -1;
-    for (std::size_t k = 0; k < m; ++k) {
-      const float d2 = gate_d2(objects_[k], x(i, 0), x(i, 1));
-      if (d2 <= best) {
-        best = d2;
-        k_best = int(k);
-      }
-    }
-    if (k_best >= 0) clusters_[std::size_t(i)] = k_best + 1;
+    if (const int c = nearest_gate(x(i, 0), x(i, 1))) clusters_[std::size_t(i)] = c;
   }
   std::vector<bool> ended(m, false);
   // Objects whose centres are within merge_distance person half-sizes of each other are one

@@ -248,6 +248,12 @@ class ReclusteringSir {
   // Normalised squared distance of (x, y) to an object's estimate for association and
   // re-clustering: its axes, at least the person size's half width and height.
   float gate_d2(const Object& o, float x, float y) const;
+  // The object (index + 1) whose gate holds (x, y) at the smallest gate_d2, or 0.
+  int nearest_gate(float x, float y) const;
+  // The measurements with novelty n(z) > novelty_threshold and their novelty (step 5).
+  void novel_measurements(std::vector<int>& novel, std::vector<double>& novelty) const;
+  // Two mean-shift steps from `centre` over the novel measurements in a person's ellipse.
+  Eigen::Vector2f novel_centroid(const std::vector<int>& novel, Eigen::Vector2f centre) const;
 
   ReclusteringSirParams params_;
   int width_, height_;
