@@ -72,6 +72,7 @@ void bind_models(py::module_& m);
 void bind_filters(py::module_& m);
 void bind_glmb(py::module_& m);
 void bind_multi_bernoulli(py::module_& m);
+void bind_reclustering_sir(py::module_& m);
 void bind_apps(py::module_& m);
 void bind_detections(py::module_& m);
 void bind_tracks(py::module_& m);

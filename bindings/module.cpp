@@ -55,6 +55,7 @@ PYBIND11_MODULE(_core, m) {
   vtrack::bindings::bind_filters(m);
   vtrack::bindings::bind_glmb(m);
   vtrack::bindings::bind_multi_bernoulli(m);
+  vtrack::bindings::bind_reclustering_sir(m);
   vtrack::bindings::bind_apps(m);
   vtrack::bindings::bind_detections(m);
   vtrack::bindings::bind_vehicles(m);

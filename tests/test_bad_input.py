@@ -147,6 +147,7 @@ CLI_FILE_CASES = (
     [("info", kind) for kind in VIDEOS]
     + [("bgs", kind) for kind in VIDEOS]
     + [("track-mb", kind) for kind in VIDEOS]
+    + [("track-sir", kind) for kind in VIDEOS]
     + [("track-hog", kind) for kind in VIDEOS]
     + [("track-det", kind) for kind in DETS]
     + [("track-config", kind) for kind in CONFIGS]
@@ -181,6 +182,8 @@ def test_cli_bad_files(tmp_path, command, kind):
         "info": ["info", bad],
         "bgs": ["bgs", bad, "--out", out / "y.avi"],
         "track-mb": ["track", bad, "--out", out / "t.txt", "--render", out / "r.avi"],
+        "track-sir": ["track", bad, "--method", "sir", "--out", out / "t.txt", "--render",
+                      out / "r.avi"],
         "track-hog": ["track", bad, "--method", "glmb", "--detector", "hog", "--out", out / "t.txt",
                       "--save-detections", out / "d.txt"],
         "track-det": ["track", "--detections", bad, "--method", "glmb", "--out", out / "t.txt"],
@@ -344,6 +347,7 @@ READERS = {
     "load_config": (vtrack.load_config, CONFIGS),
     "probe_video": (vtrack.io.probe_video, VIDEOS),
     "track_video": (lambda p: vtrack.track_video(p, method="mb"), VIDEOS),
+    "track_video_sir": (lambda p: vtrack.track_video(p, method="sir"), VIDEOS),
     "read_camera_file": (vtrack.vehicles.read_camera_file, FILES),
     "read_vehicle_models_file": (vtrack.vehicles.read_vehicle_models_file, FILES),
     "read_camera_file_contents": (vtrack.vehicles.read_camera_file, CAMERA_CONTENTS),
@@ -359,8 +363,8 @@ ACCEPTED = {
     ("read_mot", "coordinate_huge"), ("read_mot", "too_few_fields"),
     ("load_config", "unknown_section"), ("load_config", "unknown_name"), ("load_config", "wrong_kind"),
     ("load_config", "int_overflow"), ("load_config", "nan"), ("load_config", "negative"),
-    ("probe_video", "truncated"), ("track_video", "truncated"), ("estimate_vehicles", "empty"),
-    ("measure_vehicles", "truncated"),
+    ("probe_video", "truncated"), ("track_video", "truncated"), ("track_video_sir", "truncated"),
+    ("estimate_vehicles", "empty"), ("measure_vehicles", "truncated"),
 }
 
 
@@ -373,7 +377,7 @@ def test_python_readers(tmp_path, reader, kind):
             function(path)
         except (OSError, ValueError) as e:  # a truncated video may fail at the cut: named
             assert (reader, kind) in {("probe_video", "truncated"), ("track_video", "truncated"),
-                                      ("measure_vehicles", "truncated"),
+                                      ("measure_vehicles", "truncated"), ("track_video_sir", "truncated"),
                                       ("read_mot", "too_few_fields")}, e
             assert "frame" in str(e) or path.name in str(e), e
         return
@@ -394,6 +398,7 @@ def test_python_readers(tmp_path, reader, kind):
 CLASSES = {
     "KdeBackground": lambda **kw: vtrack.KdeBackground(**kw),
     "MultiBernoulliTracker": lambda **kw: vtrack.MultiBernoulliTracker((64, 48), **kw),
+    "ReclusteringSirTracker": lambda **kw: vtrack.ReclusteringSirTracker((64, 48), **kw),
     "BoxTracker": lambda **kw: vtrack.BoxTracker((64, 48), **kw),
     "GlmbTracker": lambda **kw: vtrack.GlmbTracker(MOTION, OBSERVATION, [], **kw),
     "HogPeopleDetector": lambda **kw: vtrack.HogPeopleDetector(**kw),
@@ -405,6 +410,7 @@ CLASSES = {
 DEFAULTS = {
     "KdeBackground": vtrack.KdeBackground.default_params(),
     "MultiBernoulliTracker": vtrack.MultiBernoulliTracker.default_params(),
+    "ReclusteringSirTracker": vtrack.ReclusteringSirTracker.default_params(),
     "BoxTracker": vtrack.BoxTracker.default_params(),
     "GlmbTracker": vtrack.GlmbTracker.default_params(),
     "HogPeopleDetector": vtrack.HogPeopleDetector.default_params(),
@@ -460,6 +466,7 @@ BAD_ARRAYS = {
 }
 _box = vtrack.BoxTracker((64, 48))
 _mb = vtrack.MultiBernoulliTracker((64, 48))
+_sir = vtrack.ReclusteringSirTracker((64, 48))
 _glmb = vtrack.GlmbTracker(MOTION, OBSERVATION, [])
 _kde = vtrack.KdeBackground()
 _hog = vtrack.HogPeopleDetector()
@@ -474,6 +481,9 @@ _vehicles = vtrack.vehicles.VehicleDimensionEstimator(_CAMERA)
 ARRAY_TAKERS = {
     "BoxTracker.step": _box.step,
     "MultiBernoulliTracker.step": _mb.step,
+    "ReclusteringSirTracker.step": _sir.step,
+    "ellipse_log_likelihood": lambda a: vtrack.trackers.ellipse_log_likelihood(
+        (10.0, 10.0, 3.0, 5.0), a, 0.1, (2.0, 3.0)),
     "GlmbTracker.step": _glmb.step,
     "KdeBackground.apply": _kde.apply,
     "HogPeopleDetector.detect": _hog.detect,

@@ -225,7 +225,7 @@ def test_cli_detections_errors(vtrack_cli, tmp_path):
          "--image-size expects WxH"),
         (["--detections", good, "--method", "glmb", "--out", out, "--render", "x.mp4"],
          "--render needs a VIDEO"),
-        (["--detections", good, "--method", "sort", "--out", out], "method must be one of mb, glmb"),
+        (["--detections", good, "--method", "sort", "--out", out], "method must be one of mb, sir, glmb"),
         (["video.avi", "--method", "glmb", "--out", out], "needs --detector hog"),
     ]
     for args, message in usage:

@@ -88,7 +88,7 @@ def test_same_seed_same_tracks_and_parameters_are_checked(scenes):
         vtrack.track_video(path, sigma_xy=-1.0)
     with pytest.raises(ValueError, match="method glmb needs a detector"):
         vtrack.track_video(path, method="glmb")
-    with pytest.raises(ValueError, match="method must be one of mb, glmb, got 'sort'"):
+    with pytest.raises(ValueError, match="method must be one of mb, sir, glmb, got 'sort'"):
         vtrack.track_video(path, method="sort")
     with pytest.raises(OSError, match="no such file"):
         vtrack.track_video(path.parent / "missing.avi")

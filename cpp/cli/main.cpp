@@ -253,7 +253,7 @@ std::pair<int, int> parse_image_size(const std::string& text) {
 // Which inputs and options a method takes; usage errors for the others.
 void check_track_options(const TrackOptions& o) {
   const bool detections = !o.detections.empty();
-  if (o.method == "mb") {
+  if (o.method == "mb" || o.method == "sir") {
     for (const auto& [flag, value] : {std::pair{"--detections", o.detections},
                                       {"--save-detections", o.save_detections},
                                       {"--image-size", o.image_size}}) {
@@ -326,7 +326,7 @@ bool parameter_option(TrackOptions& o, const std::string& a, const std::string& 
   return true;
 }
 
-// The library's message for an unknown method ("method must be one of mb, glmb, got 'x'"), as
+// The library's message for an unknown method ("method must be one of mb, sir, glmb, got 'x'"), as
 // Python gives it, as a usage error.
 void check_method(const TrackOptions& o) {
   vtrack::apps::PipelineParams params;
@@ -618,8 +618,9 @@ const std::vector<Command>& commands() {
        "                   update_max_skips [3], illumination_compensation [false]",
        run_bgs},
       {"track",
-       "track people: KDE background + multi-Bernoulli TBD filter (mb), or detections + GLMB",
-       "vtrack track VIDEO --out TRACKS [--method mb] [--render OUT.mp4] [--config FILE]\n"
+       "track people: KDE background + multi-Bernoulli TBD filter (mb) or re-clustering SIR\n"
+       "(sir), or detections + GLMB",
+       "vtrack track VIDEO --out TRACKS [--method mb|sir] [--render OUT.mp4] [--config FILE]\n"
        "                    [--seed N] [--set name=value ...]\n"
        "       vtrack track VIDEO --method glmb --detector hog --out TRACKS [--render OUT.mp4]\n"
        "                    [--save-detections DET] [--config FILE] [--seed N]\n"
@@ -630,6 +631,8 @@ const std::vector<Command>& commands() {
        "  --out TRACKS     MOTChallenge text: frame,id,x,y,w,h,conf,-1,-1,-1 (frames from 1,\n"
        "                   conf = the track's score); written only when tracking succeeded\n"
        "  --method mb      the multi-Bernoulli track-before-detect tracker (mb-tbd paper)\n"
+       "  --method sir     the multi-person SIR with measurement-guided re-clustering\n"
+       "                   (particle-filters-human-vehicle §2) on the KDE's foreground pixels\n"
        "  --method glmb    the delta-GLMB tracker on image boxes (state: box centre, velocity,\n"
        "                   size), from a MOTChallenge det file or from HOG people detections\n"
        "  --detections DET MOTChallenge det rows frame,id,x,y,w,h[,conf,...] (frames from 1)\n"
@@ -639,7 +642,9 @@ const std::vector<Command>& commands() {
        "  --render FILE    also write the video with each track's box in its own colour\n"
        "  --config FILE    YAML or JSON: a top-level seed and sections of parameters. mb:\n"
        "                   background (vtrack.KdeBackground.default_params() in Python) and\n"
-       "                   tracker (vtrack.MultiBernoulliTracker.default_params()); glmb:\n"
+       "                   tracker (vtrack.MultiBernoulliTracker.default_params()); sir:\n"
+       "                   background and tracker (vtrack.ReclusteringSirTracker.default_params());\n"
+       "                   glmb:\n"
        "                   detector (vtrack.HogPeopleDetector.default_params()) and tracker\n"
        "                   (vtrack.BoxTracker.default_params())\n"
        "  --seed N         the tracker's seed, 0 to 2^64-1 (default 0): the same seed gives the\n"
@@ -669,7 +674,7 @@ const std::vector<Command>& commands() {
        "  --set name=value one parameter of the tracker (repeatable)",
        run_follow},
       {"params", "print the parameters a track run would use, as JSON config sections",
-       "vtrack params [--method mb|glmb] [--detector hog] [--config FILE] [--seed N]\n"
+       "vtrack params [--method mb|sir|glmb] [--detector hog] [--config FILE] [--seed N]\n"
        "              [--set name=value ...]\n\n"
        "  Resolves the defaults, the config file, --seed and --set exactly as `vtrack track`\n"
        "  does and prints the result: each section of the method with every parameter.",

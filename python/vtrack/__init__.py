@@ -10,9 +10,9 @@ The main entry points are here; the rest lives in submodules that mirror the C++
 ============================  =========================================================
 ``vtrack.pipelines``          :func:`track_video`, :func:`track_detections`, :func:`follow`
                               (also here)
-``vtrack.trackers``           ``MultiBernoulliTracker``, ``GlmbTracker``, ``BoxTracker``, ``Tracks``;
-                              single-object ``ColorParticleTracker``, ``PartParticleTracker``
-                              (also here)
+``vtrack.trackers``           ``MultiBernoulliTracker``, ``ReclusteringSirTracker``, ``GlmbTracker``,
+                              ``BoxTracker``, ``Tracks``; single-object ``ColorParticleTracker``,
+                              ``PartParticleTracker`` (also here)
 ``vtrack.image``              ``KdeBackground``, morphology, integral images, color histograms
 ``vtrack.detectors``          ``HogPeopleDetector``
 ``vtrack.models``             motion / observation models, the depth likelihood
@@ -57,6 +57,7 @@ from ._core import (
     MultiBernoulliTracker,
     ParticleFilter,
     PartParticleTracker,
+    ReclusteringSirTracker,
     Rng,
     Tracks,
     __version__,
@@ -82,6 +83,7 @@ __all__ = [
     "MultiBernoulliTracker",
     "ParticleFilter",
     "PartParticleTracker",
+    "ReclusteringSirTracker",
     "Rng",
     "Tracks",
     "__version__",

@@ -421,6 +421,76 @@ class MultiBernoulliTracker:
     @staticmethod
     def default_params() -> Dict[str, Any]: ...
 
+class ReclusteringSirTracker:
+    def __init__(
+        self,
+        image_size: Tuple[int, int],
+        *,
+        n_particles: int = 600,
+        budget_objects: int = 4,
+        resampling: Literal["multinomial", "stratified", "systematic", "residual"] = 'systematic',
+        rho: float = 0.1,
+        novelty_sigma: float = 0.35,
+        shape_weight: float = 0.1,
+        foreground_threshold: float = 0.5,
+        grid_step: float = 0.05,
+        gate: float = 1.5,
+        novelty_threshold: float = 0.5,
+        inject_fraction: float = 0.1,
+        min_object_fraction: float = 0.3,
+        keep_fraction: float = 0.3,
+        merge_distance: float = 1.2,
+        merge_size: float = 1.3,
+        max_misses: int = 3,
+        height_mean: float = 0.0,
+        size_aspect: float = 0.35,
+        size_from_foreground: float = 1.06,
+        size_initial: float = 0.15,
+        size_min: float = 0.45,
+        size_max: float = 2.0,
+        size_std: float = 0.25,
+        sigma_xy: float = 0.03,
+        sigma_velocity: float = 0.02,
+        sigma_wh: float = 0.04,
+        confirm_frames: int = 5,
+        lost_memory: int = 30,
+        relabel_overlap: float = 0.3,
+        box_scale_w: float = 0.98,
+        box_scale_h: float = 0.96,
+        box_offset_x: float = 0.0,
+        box_offset_y: float = 0.03,
+        seed: int = 0,
+    ) -> None: ...
+    def step(self, y: npt.NDArray[np.float32]) -> Tracks: ...
+    @property
+    def tracks(self) -> Tracks: ...
+    @property
+    def particles(self) -> npt.NDArray[np.float32]: ...
+    @property
+    def clusters(self) -> npt.NDArray[np.int32]: ...
+    @property
+    def objects(self) -> List[Dict[str, Any]]: ...
+    @property
+    def frame(self) -> int: ...
+    @property
+    def person_height(self) -> float: ...
+    @property
+    def grid_pixels(self) -> int: ...
+    @property
+    def image_size(self) -> Tuple[int, int]: ...
+    @property
+    def params(self) -> Dict[str, Any]: ...
+    @staticmethod
+    def default_params() -> Dict[str, Any]: ...
+
+def ellipse_log_likelihood(
+    ellipse: ArrayLike,
+    points: ArrayLike,
+    rho: float,
+    sigma: ArrayLike,
+    shape_power: float = 1.0,
+) -> float: ...
+
 # ---- apps ---------------------------------------------------------------------------------------
 
 class VideoInfo:

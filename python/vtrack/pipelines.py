@@ -3,7 +3,9 @@ parameters give the same rows.
 
 - :func:`track_video`: video (or image folder) -> background model or detector -> tracker ->
   MOTChallenge rows. ``method="mb"``: the KDE background model and the multi-Bernoulli
-  track-before-detect tracker (config sections ``background``, ``tracker``); ``method="glmb"``
+  track-before-detect tracker (config sections ``background``, ``tracker``); ``method="sir"``:
+  the same background model and the re-clustering SIR of particle-filters-human-vehicle §2
+  (``background``, ``tracker``: ``ReclusteringSirTracker.default_params()``); ``method="glmb"``
   with ``detector="hog"``: OpenCV's HOG people detector and the box GLMB tracker (sections
   ``detector``, ``tracker``).
 - :func:`track_detections`: a MOTChallenge detection file (or rows) -> the box GLMB tracker.
@@ -27,7 +29,7 @@ from . import _core
 PathLike = Union[str, "os.PathLike[str]"]
 Progress = Union[bool, Callable[[int, int], None], None]
 
-METHODS = ("mb", "glmb")
+METHODS = ("mb", "sir", "glmb")
 
 __all__ = ["METHODS", "follow", "pipeline_params", "track_detections", "track_video"]
 
@@ -124,7 +126,8 @@ def track_video(video: PathLike, method: str = "mb", *, detector: Optional[str] 
                 **params: Any) -> Union[np.ndarray, Tuple[np.ndarray, np.ndarray]]:
     """Track the people in a video file or image folder with one of vtrack's pipelines.
 
-    method: ``"mb"`` (KDE background + multi-Bernoulli TBD, the mb-tbd paper) or ``"glmb"``
+    method: ``"mb"`` (KDE background + multi-Bernoulli TBD, the mb-tbd paper), ``"sir"`` (KDE
+    background + the re-clustering SIR, particle-filters-human-vehicle §2) or ``"glmb"``
     (a detector + the box GLMB; needs ``detector="hog"``). config: a YAML/JSON file or a dict of
     sections as :func:`vtrack.io.load_config` returns. params: any parameter of the method's
     sections by name (e.g. ``seed=3, delta_b=2e-3, bandwidth=(0.03, 0.03, 0.06)``; see

@@ -11,6 +11,7 @@ filter's own extras (``states``, ``covariances``, GLMB ``labels``).
 tracker                    built with                                       step(...)
 =========================  ===============================================  =====================
 MultiBernoulliTracker      ``(image_size, **params)``                       ``y`` (H x W float32)
+ReclusteringSirTracker     ``(image_size, **params)``                       ``y`` (H x W float32)
 BoxTracker                 ``(image_size, **params)``                       ``boxes`` (M x 4 or 5)
 GlmbTracker                ``(motion, observation, births, **params)``      ``detections`` (M x z)
 =========================  ===============================================  =====================
@@ -28,8 +29,11 @@ from ._core import (
     GlmbTracker,
     MultiBernoulliTracker,
     PartParticleTracker,
+    ReclusteringSirTracker,
     Tracks,
+    ellipse_log_likelihood,
 )
 
 __all__ = ["BernoulliComponent", "BoxTracker", "ColorParticleTracker", "GlmbTracker",
-           "MultiBernoulliTracker", "PartParticleTracker", "Tracks"]
+           "MultiBernoulliTracker", "PartParticleTracker", "ReclusteringSirTracker", "Tracks",
+           "ellipse_log_likelihood"]

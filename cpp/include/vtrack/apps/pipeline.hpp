@@ -14,6 +14,9 @@
 //         -> multi-Bernoulli TBD filter (Sections 3.2-4)     tracker:    MultiBernoulliParams
 //         (after each frame the background model's closing is set to the tracker's, which is
 //         relative to the people's learnt height, unless the tracker's closing_size is in pixels)
+//   sir   KDE background model (as mb)                      background: KdeBackgroundParams
+//         -> re-clustering SIR (particle-filters-human-     tracker:    ReclusteringSirParams
+//            vehicle §2) on the foreground pixels of y
 //   glmb  a people detector (detector "hog", required)      detector:   HogParams
 //         -> delta-GLMB box tracker (BoxTracker)             tracker:    BoxTrackerParams
 #include <cstdint>
@@ -29,18 +32,20 @@
 #include "vtrack/apps/track_detections.hpp"
 #include "vtrack/apps/video_source.hpp"
 #include "vtrack/filters/multi_bernoulli.hpp"
+#include "vtrack/filters/reclustering_sir.hpp"
 #include "vtrack/image/kde_background.hpp"
 
 namespace vtrack::apps {
 
 struct PipelineParams {
-  std::string method = "mb";  // "mb" or "glmb"
+  std::string method = "mb";  // "mb", "sir" or "glmb"
   // What gives glmb its boxes on a video: "hog" (OpenCV's HOG people detector). Required by
   // glmb, so that a detector added later cannot silently change what a command does; mb takes
   // none.
   std::string detector;
   image::KdeBackgroundParams background;  // mb: section "background"
   filters::MultiBernoulliParams mb;       // mb: section "tracker"
+  filters::ReclusteringSirParams sir;     // sir: section "tracker"
   BoxTrackerParams box;                   // glmb: section "tracker"
   HogParams hog;                          // glmb: section "detector"
 };
