@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "common.hpp"
+#include "guard.hpp"
 #include "params.hpp"
 #include "vtrack/core/errors.hpp"
 #include "vtrack/core/gaussian.hpp"
@@ -133,15 +134,20 @@ using SirVariant = std::variant<Sir<LinearTransition, models::LinearGaussianLike
                                 Sir<PyMotion, PyObservation>>;
 
 // What both Python-facing filters share: dispatch on the variant of model types, and step.
+// Every access goes through visit(), which holds the object's guard (guard.hpp): calls from two
+// Python threads on one filter take turns (step releases the GIL), and a Python model that calls
+// back into its own filter gets a RuntimeError instead of a deadlock. Call with the GIL held.
 template <class Variant>
 class VariantFilter {
  public:
   template <class F>
   auto visit(F&& fn) {
+    ObjectGuard guard(this);
     return std::visit(std::forward<F>(fn), filter_);
   }
   template <class F>
   auto visit(F&& fn) const {
+    ObjectGuard guard(this);
     return std::visit(std::forward<F>(fn), filter_);
   }
 

@@ -395,6 +395,8 @@ def test_python_readers(tmp_path, reader, kind):
 # ---------------------------------------------------------------------------------------------
 # Python: parameters of every parameterised class, NaN/inf/negative/huge/wrong kind
 
+_RANGE_BEARING = vtrack.models.RangeBearingObservation()
+_PRIOR_4D = vtrack.smc.Gaussian([10.0, 0.0, 10.0, 0.0], np.eye(4))
 CLASSES = {
     "KdeBackground": lambda **kw: vtrack.KdeBackground(**kw),
     "MultiBernoulliTracker": lambda **kw: vtrack.MultiBernoulliTracker((64, 48), **kw),
@@ -406,6 +408,10 @@ CLASSES = {
     "ColorParticleTracker": lambda **kw: vtrack.ColorParticleTracker(**kw),
     "PartParticleTracker": lambda **kw: vtrack.PartParticleTracker(**kw),
     "VehicleDimensionEstimator": lambda **kw: vtrack.vehicles.VehicleDimensionEstimator(_CAMERA, **kw),
+    "ParticleFilter": lambda **kw: vtrack.smc.ParticleFilter(
+        vtrack.models.RandomWalk([1.0, 0.1, 1.0, 0.1]), _RANGE_BEARING, prior=_PRIOR_4D, **kw),
+    "MCMCParticleFilter": lambda **kw: vtrack.smc.MCMCParticleFilter(
+        vtrack.models.RandomWalk([1.0, 0.1, 1.0, 0.1]), _RANGE_BEARING, prior=_PRIOR_4D, **kw),
 }
 DEFAULTS = {
     "KdeBackground": vtrack.KdeBackground.default_params(),
@@ -418,6 +424,8 @@ DEFAULTS = {
     "ColorParticleTracker": vtrack.ColorParticleTracker.default_params(),
     "PartParticleTracker": vtrack.PartParticleTracker.default_params(),
     "VehicleDimensionEstimator": vtrack.vehicles.VehicleDimensionEstimator.default_params(),
+    "ParticleFilter": vtrack.smc.ParticleFilter.default_params(),
+    "MCMCParticleFilter": vtrack.smc.MCMCParticleFilter.default_params(),
 }
 # Always refused: NaN (no parameter means anything by it), a string, None, and (for an integer
 # parameter) an int beyond its type. Refused or accepted (some parameters are documented to take
@@ -518,6 +526,8 @@ ARRAY_TAKERS = {
     "PartParticleTracker.update": _parts.update,
     "PartParticleTracker-parts": lambda a: vtrack.PartParticleTracker(parts=a),
     "VehicleDimensionEstimator.update": lambda a: _vehicles.update(1, a),
+    "ParticleFilter.step": lambda a: CLASSES["ParticleFilter"](n_particles=50).step(a),
+    "MCMCParticleFilter.step": lambda a: CLASSES["MCMCParticleFilter"](n_particles=20).step(a),
 }
 # Inputs some functions accept by definition: NaN rows are "absent" in ospa2 tracks and NaN
 # depth is "no reading"; inf weights/costs have meanings in the log domain and in assignment.

@@ -110,6 +110,58 @@ def test_one_tracker_stepped_from_two_threads_is_serialised():
     np.testing.assert_array_equal(got.boxes, expected.boxes)
 
 
+def test_one_smc_filter_stepped_from_two_threads_is_serialised():
+    # vtrack.smc's filters release the GIL in step() too: 2 x 20 steps from two threads give the
+    # particles of 40 serial steps (the measurements are all equal, so the order does not matter).
+    from vtrack.smc import ParticleFilter
+    from vtrack.models import LinearGaussianObservation, RandomWalk
+
+    def make():
+        return ParticleFilter(RandomWalk([1.0, 0.1, 1.0, 0.1]),
+                              LinearGaussianObservation.position(2, 0.25 * np.eye(2)),
+                              prior=vtrack.smc.Gaussian(np.zeros(4), np.eye(4)), n_particles=2000,
+                              seed=3)
+    z = np.array([1.0, -1.0])
+    serial = make()
+    for _ in range(40):
+        serial.step(z)
+    shared, errors = make(), []
+
+    def work():
+        try:
+            for _ in range(20):
+                shared.step(z)
+        except BaseException as e:  # noqa: BLE001 - reported below
+            errors.append(e)
+
+    threads = [threading.Thread(target=work) for _ in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert not errors and shared.steps == 40
+    np.testing.assert_array_equal(shared.particles, serial.particles)
+
+
+def test_a_python_model_calling_back_into_its_filter_is_an_error_not_a_deadlock():
+    from vtrack.smc import ParticleFilter
+    from vtrack.models import RandomWalk
+
+    class Peeking:
+        filter = None
+
+        def log_likelihood(self, particles, z):
+            self.filter.particles  # noqa: B018 - the re-entrant call under test
+            return np.zeros(len(particles))
+
+    model = Peeking()
+    pf = ParticleFilter(RandomWalk([1.0]), model, prior=vtrack.smc.Gaussian([0.0], np.eye(1)),
+                        n_particles=10)
+    model.filter = pf
+    with pytest.raises(RuntimeError, match="already"):
+        pf.step(np.array([0.0]))
+
+
 # ---------------------------------------------------------------------------------------------
 # Hangs
 
