@@ -261,8 +261,32 @@ def t_pipelines(a: Args):
         io.write_mot(os.path.join(SCRATCH, "rows.txt"), out)
 
 
+def t_particle_filters(a: Args):
+    """vtrack.smc.ParticleFilter and MCMCParticleFilter: perturbed parameters and models, then
+    steps with fuzzed measurements (sizes capped so that one input stays fast)."""
+    from vtrack import models  # noqa: PLC0415
+
+    mcmc = a.fdp.ConsumeBool()
+    cls = smc.MCMCParticleFilter if mcmc else smc.ParticleFilter
+    defaults = dict(cls.default_params(), n_particles=40, **({"burn_in": 20} if mcmc else {}))
+    params = {**defaults, **a.params(cls.default_params())}
+    for name, cap in (("n_particles", 200), ("burn_in", 200), ("thinning", 5),
+                      ("resample_move_steps", 3), ("threads", 2)):
+        if isinstance(params.get(name), int) and params[name] > cap:
+            params[name] = cap
+    motion = models.RandomWalk(a.array((4,), np.float64, 0, 2) if a.hostile() else [1.0, 0.1, 1.0, 0.1])
+    observation = models.RangeBearingObservation() if a.fdp.ConsumeBool() else \
+        models.LinearGaussianObservation.position(2, np.eye(2) * a.number(1.0))
+    prior = smc.Gaussian(a.array((4,), np.float64, -5, 20),
+                         a.array((4, 4), np.float64, -1, 2) if a.hostile() else np.eye(4))
+    f = cls(motion, observation, prior=prior, **params)
+    for _ in range(a.fdp.ConsumeIntInRange(1, 3)):
+        f.step(a.array((2,), np.float64, -5, 30))
+    _ = f.particles, f.mean, f.map_estimate
+
+
 TARGETS = [t_kde, t_mb, t_box, t_glmb, t_hog, t_smc, t_image, t_assign, t_metrics, t_models,
-           t_pipelines]
+           t_pipelines, t_particle_filters]
 
 
 def one_input(data: bytes) -> None:
