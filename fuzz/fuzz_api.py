@@ -285,8 +285,51 @@ def t_particle_filters(a: Args):
     _ = f.particles, f.mean, f.map_estimate
 
 
+def t_follow(a: Args):
+    """The single-object trackers: init on a fuzzed frame and box, updates on fuzzed frames."""
+    cls = vtrack.ColorParticleTracker if a.fdp.ConsumeBool() else vtrack.PartParticleTracker
+    params = a.params(cls.default_params())
+    if isinstance(params.get("n_particles"), int) and params["n_particles"] > 200:
+        params["n_particles"] = 200
+    t = cls(**params)
+    frame = a.frame()
+    box = tuple(a.number(v) for v in (2.0, 2.0, 12.0, 12.0)) if not a.hostile() else \
+        a.pick(ODD_VALUES + [(0, 0, 0, 0), (1, 1, 1e9, 1), (1, 2, 3)])
+    t.init(frame, box)
+    for _ in range(a.fdp.ConsumeIntInRange(1, 3)):
+        t.update(frame if a.fdp.ConsumeBool() else a.frame())
+    _ = t.particles, t.weights
+
+
+def t_sir(a: Args):
+    params = a.params(vtrack.ReclusteringSirTracker.default_params())
+    if isinstance(params.get("n_particles"), int) and params["n_particles"] > 300:
+        params["n_particles"] = 300
+    t = vtrack.ReclusteringSirTracker(a.size(), **params)
+    w, h = t.image_size
+    for _ in range(a.fdp.ConsumeIntInRange(1, 3)):
+        t.step(a.array((h, w), np.float32))
+
+
+def t_vehicles(a: Args):
+    from vtrack.synthetic_road import CAMERA_SETUPS  # noqa: PLC0415
+
+    f = CAMERA_SETUPS[a.pick(sorted(CAMERA_SETUPS))].camera_file()
+    cam = vtrack.vehicles.Camera(f["K"], f["dist"], f["R"], f["t"], image_size=tuple(f["image_size"]))
+    params = a.params(vtrack.vehicles.VehicleDimensionEstimator.default_params())
+    for name, cap in (("n_particles", 100), ("burn_in", 100), ("thinning", 3)):
+        if isinstance(params.get(name), int) and params[name] > cap:
+            params[name] = cap
+    est = vtrack.vehicles.VehicleDimensionEstimator(cam, **params)
+    for frame in range(a.fdp.ConsumeIntInRange(1, 3)):
+        n = a.fdp.ConsumeIntInRange(0, 8)
+        shape = a.pick([(n, 2), (4,)])
+        est.update(a.fdp.ConsumeIntInRange(0, 2), a.array(shape, np.float64, 0, 960), frame=frame)
+    est.estimates()
+
+
 TARGETS = [t_kde, t_mb, t_box, t_glmb, t_hog, t_smc, t_image, t_assign, t_metrics, t_models,
-           t_pipelines, t_particle_filters]
+           t_pipelines, t_particle_filters, t_follow, t_sir, t_vehicles]
 
 
 def one_input(data: bytes) -> None:
