@@ -198,7 +198,10 @@ def test_hypothesis_budget_has_a_documented_bound(make):
 def test_ctrl_c_interrupts_a_long_call(tmp_path):
     # Rng(seed, stream) jumps `stream` times: 2^40 jumps take days. The KeyboardInterrupt used to
     # arrive only when the call returned; now the jump loop polls Python's signal handlers.
-    script = ("import sys, vtrack\nprint('started', flush=True)\n"
+    # The child installs Python's SIGINT handler itself: a child inherits an ignored SIGINT from
+    # a parent that ignores it (a pytest run where an earlier test left it so failed this test).
+    script = ("import signal, sys, vtrack\nsignal.signal(signal.SIGINT, signal.default_int_handler)\n"
+              "print('started', flush=True)\n"
               "vtrack.smc.Rng(0, stream=2**40)\nprint('returned', flush=True)\n")
     proc = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True)
