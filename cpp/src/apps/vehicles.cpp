@@ -220,11 +220,39 @@ namespace {
 struct Blob {
   cv::Rect box;
   std::vector<cv::Point> contour;
+  // The silhouette's lowest image point and where it meets the road (metres), when that point is
+  // a ground point of the vehicle: for a cuboid on the road seen by a camera with no roll the
+  // lowest image point is a bottom corner (the one nearest the camera), unless the image border
+  // cuts the silhouette there.
+  cv::Point2d foot;
+  Eigen::Vector2d ground = Eigen::Vector2d::Zero();
+  bool has_ground = false;
 };
 
+// The lowest contour point (the mean x of the lowest row's points) and its road point; no ground
+// point when it lies on the image's outermost pixels (cut by the border) or at/above the horizon.
+void find_ground(Blob& blob, const models::Camera& camera, int width, int height) {
+  int lowest = INT_MIN;
+  double sum_x = 0.0;
+  int n = 0;
+  for (const auto& p : blob.contour) {
+    if (p.y > lowest) lowest = p.y, sum_x = 0.0, n = 0;
+    if (p.y == lowest) sum_x += p.x, ++n;
+  }
+  if (n == 0) return;
+  blob.foot = {sum_x / n, static_cast<double>(lowest)};
+  if (lowest >= height - 1 || blob.foot.x < 1.0 || blob.foot.x > width - 2.0) return;
+  try {
+    blob.ground = camera.image_to_road_points(Eigen::Vector2d(blob.foot.x, blob.foot.y)).col(0);
+    blob.has_ground = true;
+  } catch (const InvalidArgument&) {
+    // At or above the horizon: no road point.
+  }
+}
+
 // Connected components of the closed foreground of at least min_area pixels, with their outer
-// contours (pixel centres).
-std::vector<Blob> find_blobs(const cv::Mat& mask, int min_area, cv::Mat& labels) {
+// contours (pixel centres) and ground points.
+std::vector<Blob> find_blobs(const cv::Mat& mask, int min_area, const models::Camera& camera, cv::Mat& labels) {
   cv::Mat stats, centroids;
   const int n = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
   std::vector<Blob> out;
@@ -240,7 +268,9 @@ std::vector<Blob> find_blobs(const cv::Mat& mask, int min_area, cv::Mat& labels)
     for (std::size_t c = 1; c < contours.size(); ++c) {
       if (contours[c].size() > contours[best].size()) best = c;
     }
-    out.push_back({box, std::move(contours[best])});
+    Blob blob{box, std::move(contours[best]), {}, Eigen::Vector2d::Zero(), false};
+    find_ground(blob, camera, mask.cols, mask.rows);
+    out.push_back(std::move(blob));
   }
   return out;
 }
@@ -250,16 +280,87 @@ double overlap(const cv::Rect2d& a, const cv::Rect2d& b) {
   return inter > 0 ? inter / (a.area() + b.area() - inter) : 0.0;
 }
 
+// A least-squares line through a track's ground points, g(f) = mean + velocity (f - mean frame):
+// a vehicle keeps a near constant velocity on the road over its passage, and its ground points
+// are quantised to the pixel (tens of centimetres per pixel in the distance), so a fit over every
+// point predicts far better than the last two points' difference. Frames are counted from the
+// first ground point (no cancellation in the sums).
+struct GroundLine {
+  long long first_frame = 0;
+  double n = 0.0, sf = 0.0, sff = 0.0;
+  Eigen::Vector2d sg = Eigen::Vector2d::Zero(), sfg = Eigen::Vector2d::Zero();
+
+  void add(long long frame, const Eigen::Vector2d& g) {
+    if (n == 0.0) first_frame = frame;
+    const double f = static_cast<double>(frame - first_frame);
+    n += 1.0, sf += f, sff += f * f, sg += g, sfg += f * g;
+  }
+  bool has_velocity() const { return n >= 2.0; }
+  Eigen::Vector2d at(long long frame) const {
+    const double f = static_cast<double>(frame - first_frame);
+    const double var = n * sff - sf * sf;  // > 0 with two distinct frames
+    const Eigen::Vector2d velocity = var > 0.0 ? Eigen::Vector2d((n * sfg - sf * sg) / var) : Eigen::Vector2d::Zero();
+    return (sg + velocity * (n * f - sf)) / n;
+  }
+};
+
 struct BlobTrack {
   int id = 0;
   cv::Rect2d box;          // at last_frame
   cv::Point2d velocity;    // pixels per frame, of the box's centre
   long long last_frame = 0;
+  long long last_matched = 0;  // the last frame matched to a blob of its own
   int hits = 0;            // frames matched to a blob of its own
+  // The road-plane motion (see predicted()): the ground points' line, and the box and foot of
+  // the last matched blob with a ground point (at ground_frame).
+  GroundLine ground;
+  cv::Rect2d ground_box;
+  cv::Point2d foot;
+  long long ground_frame = 0;
 };
 
-cv::Rect2d predicted(const BlobTrack& t, long long frame) {
-  return t.box + t.velocity * static_cast<double>(frame - t.last_frame);
+// The track's image box at `frame`. A vehicle moves at a near constant velocity on the road, not
+// in the image: under perspective an approaching vehicle speeds up and grows in the image, a
+// receding one slows down and shrinks, so a constant image velocity drifts off within the
+// seconds a vehicle may be hidden behind another (a car behind a bus, vehicles following each
+// other in the distance). When the last matched blob had a ground point and the track a road
+// velocity, the box is predicted on the road: the ground point moves along its line (GroundLine),
+// the box follows its image and scales by the ratio of the depths (a vehicle's image size is
+// inversely proportional to its depth). Otherwise (a new track, a silhouette cut at its foot by
+// the image border) at constant image velocity.
+cv::Rect2d predicted(const BlobTrack& t, long long frame, const models::Camera& camera) {
+  const cv::Rect2d by_image = t.box + t.velocity * static_cast<double>(frame - t.last_frame);
+  if (!t.ground.has_velocity() || t.ground_frame != t.last_matched) return by_image;
+  const Eigen::Vector2d g0 = t.ground.at(t.ground_frame), g1 = t.ground.at(frame);
+  const auto& c = camera.calibration();
+  const double depth0 = (c.R * Eigen::Vector3d(g0.x(), g0.y(), 0.0) + c.t).z();
+  const double depth1 = (c.R * Eigen::Vector3d(g1.x(), g1.y(), 0.0) + c.t).z();
+  if (!(depth0 > 0.0 && depth1 > 0.0)) return by_image;
+  const Eigen::Vector2d foot = camera.road_to_image_points(g1).col(0);
+  if (!foot.allFinite()) return by_image;
+  const double s = depth0 / depth1;
+  const cv::Point2d f(foot.x(), foot.y());
+  return {f + s * (t.ground_box.tl() - t.foot), cv::Size2d(s * t.ground_box.width, s * t.ground_box.height)};
+}
+
+// Continues track t with blob b at `frame` (the image and the road motion).
+void continue_track(BlobTrack& t, const Blob& b, long long frame) {
+  const cv::Rect2d box(b.box);
+  if (t.hits > 0) {
+    const cv::Point2d moved = (box.tl() + box.br() - t.box.tl() - t.box.br()) * 0.5 /
+                              static_cast<double>(frame - t.last_frame);
+    t.velocity = t.hits == 1 ? moved : 0.5 * (t.velocity + moved);
+  }
+  if (b.has_ground) {
+    t.ground.add(frame, b.ground);
+    t.ground_frame = frame;
+    t.ground_box = box;
+    t.foot = b.foot;
+  }
+  t.box = box;
+  t.last_frame = frame;
+  t.last_matched = frame;
+  ++t.hits;
 }
 
 struct Assignment {
@@ -267,15 +368,15 @@ struct Assignment {
   bool merged = false;           // the blob covers two or more vehicles: no track of its own
 };
 
-// One frame of the blob tracker (see the header). Tracks are predicted at constant velocity, so
+// One frame of the blob tracker (see the header). Tracks are predicted (predicted()), so
 // that vehicles crossing in the image keep their identities. A blob covering half or more of the
-// predicted boxes of two or more tracks is their merged image: they coast (predicted box, velocity
-// kept) and the blob goes to none. Other blobs continue the track whose predicted box they
+// predicted boxes of two or more tracks is their merged image: they coast (predicted box kept)
+// and the blob goes to none. Other blobs continue the track whose predicted box they
 // overlap most (greedy in decreasing intersection over union, >= min_overlap) or start one.
 std::vector<Assignment> associate(std::vector<BlobTrack>& tracks, const std::vector<Blob>& blobs, long long frame,
-                                  const VehicleBlobParams& p, int& next_id) {
+                                  const VehicleBlobParams& p, const models::Camera& camera, int& next_id) {
   std::vector<cv::Rect2d> pred;
-  for (const auto& t : tracks) pred.push_back(predicted(t, frame));
+  for (const auto& t : tracks) pred.push_back(predicted(t, frame, camera));
   std::vector<Assignment> out(blobs.size());
   std::vector<bool> taken(tracks.size(), false);
   for (std::size_t b = 0; b < blobs.size(); ++b) {
@@ -310,20 +411,13 @@ std::vector<Assignment> associate(std::vector<BlobTrack>& tracks, const std::vec
   }
   for (std::size_t b = 0; b < blobs.size(); ++b) {
     if (out[b].merged) continue;
-    const cv::Rect2d box(blobs[b].box);
     if (out[b].track == SIZE_MAX) {
-      tracks.push_back({next_id++, box, {0.0, 0.0}, frame, 0});
+      BlobTrack t;
+      t.id = next_id++;
+      tracks.push_back(t);
       out[b].track = tracks.size() - 1;
     }
-    BlobTrack& t = tracks[out[b].track];
-    if (t.hits > 0) {
-      const cv::Point2d moved = (box.tl() + box.br() - t.box.tl() - t.box.br()) * 0.5 /
-                                static_cast<double>(frame - t.last_frame);
-      t.velocity = t.hits == 1 ? moved : 0.5 * (t.velocity + moved);
-    }
-    t.box = box;
-    t.last_frame = frame;
-    ++t.hits;
+    continue_track(tracks[out[b].track], blobs[b], frame);
   }
   return out;
 }
@@ -376,8 +470,8 @@ VehiclePipelineResult measure_vehicles(const std::string& video, const models::C
     background.apply(frame, y);
     image::foreground_mask(y, params.blobs.foreground_threshold, mask);
     if (!kernel.empty()) cv::morphologyEx(mask, mask, cv::MORPH_CLOSE, kernel);
-    const std::vector<Blob> blobs = find_blobs(mask, params.blobs.min_area, labels);
-    const auto matched = associate(tracks, blobs, k, params.blobs, next_id);
+    const std::vector<Blob> blobs = find_blobs(mask, params.blobs.min_area, estimator.camera(), labels);
+    const auto matched = associate(tracks, blobs, k, params.blobs, estimator.camera(), next_id);
     for (std::size_t b = 0; b < blobs.size(); ++b) {
       if (matched[b].merged) continue;  // two or more vehicles in one blob: no one's silhouette
       const BlobTrack& t = tracks[matched[b].track];

@@ -62,10 +62,13 @@ void write_vehicles_csv(const std::string& path, const std::vector<filters::Vehi
 //
 // The tracker. A vehicle on a road is one large blob that moves by a fraction of its own size per
 // frame, in clutter-free foreground; the box GLMB (built for people detections with misses and
-// clutter) is not needed. Each track's box is predicted at constant velocity (so that vehicles
-// crossing in the image keep their identities); each blob continues the track whose predicted box
-// it overlaps most (intersection over union >= min_overlap, greedy in decreasing overlap, so the
-// assignment is deterministic); an unmatched blob starts a track; a track unmatched for more than
+// clutter) is not needed. Each track's box is predicted on the road plane: the ground point under
+// the silhouette's lowest image point (a bottom corner of the cuboid) moves along a least-squares
+// line (constant velocity in metres), the box follows its image and scales by perspective; at
+// constant image velocity until the track has two ground points (vehicles crossing in the image,
+// or hidden behind another for seconds, keep their identities); each blob continues the track
+// whose predicted box it overlaps most (intersection over union >= min_overlap, greedy in
+// decreasing overlap, so the assignment is deterministic); an unmatched blob starts a track; a track unmatched for more than
 // lost_memory frames ends. Occlusion: a blob covering half or more of the predicted boxes of two
 // or more tracks is those vehicles merged in the image; its outline is no one cuboid's, so it goes
 // to no track and no estimator, and the tracks coast on their predictions until they separate.
