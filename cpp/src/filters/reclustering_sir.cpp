@@ -399,110 +399,135 @@ int ReclusteringSir::nearest_gate(float x, float y) const {
   return k_best + 1;
 }
 
+int ReclusteringSir::found_object(const State& s, const std::vector<int>& novel,
+                                  double min_points) {
+  int inside = 0;
+  for (const int j : novel) inside += ellipse_d2(s, z_(0, j), z_(1, j)) <= 1.0f ? 1 : 0;
+  if (double(inside) < min_points) return -1;
+  Object o;
+  o.label = next_label_++;
+  o.birth_frame = frame_;
+  o.estimate = s;
+  objects_.push_back(o);
+  return int(objects_.size());
+}
+
+void ReclusteringSir::place_best_free(const Particles::States& x, const Eigen::VectorXd& lw,
+                                      const std::vector<int>& novel, double min_points) {
+  Eigen::Index best = -1;
+  for (Eigen::Index i = 0; i < x.rows(); ++i) {
+    if (clusters_[std::size_t(i)] == 0 && (best < 0 || lw[i] > lw[best])) best = i;
+  }
+  if (best < 0) return;
+  const State s = x.row(best).transpose();
+  const int gate = nearest_gate(s[0], s[1]);
+  const int c = gate > 0 ? gate : found_object(s, novel, min_points);
+  if (c > 0) clusters_[std::size_t(best)] = c;
+}
+
+ReclusteringSir::State ReclusteringSir::injection_state(const Eigen::Vector2f& centre) {
+  const double hw = 0.5 * params_.size.size_aspect * person_h_, hh = 0.5 * person_h_;
+  const double sxy = params_.sigma_xy * person_h_, sv = params_.sigma_velocity * person_h_;
+  const auto axis = [&](double prior) {
+    return float(std::clamp(prior * (1.0 + params_.size.size_std * rng_.normal()),
+                            params_.size.size_min * prior, params_.size.size_max * prior));
+  };
+  State s;  // drawn in this order: the same seed gives the same particles
+  s[0] = float(centre[0] + sxy * rng_.normal());
+  s[1] = float(centre[1] + sxy * rng_.normal());
+  s[2] = float(sv * rng_.normal());
+  s[3] = float(sv * rng_.normal());
+  s[4] = axis(hw);
+  s[5] = axis(hh);
+  return s;
+}
+
+namespace {
+
+// The particles injections replace (Fig. 1): free particles first, then the lowest weighted,
+// never an object's last one; at most `limit` of them.
+class InjectionSlots {
+ public:
+  InjectionSlots(const std::vector<int>& clusters, const Eigen::VectorXd& lw,
+                 std::size_t n_objects, std::size_t limit)
+      : order_(lw.size()), counts_(n_objects + 1, 0), limit_(limit) {
+    std::iota(order_.begin(), order_.end(), Eigen::Index(0));
+    std::stable_sort(order_.begin(), order_.end(), [&](Eigen::Index a, Eigen::Index b) {
+      const bool fa = clusters[std::size_t(a)] == 0, fb = clusters[std::size_t(b)] == 0;
+      return fa != fb ? fa : lw[a] < lw[b];
+    });
+    for (const int c : clusters) ++counts_[std::size_t(c)];
+  }
+
+  // Puts state s into the next slot, in cluster c (of n_objects), with weight 1 / N; false when
+  // no slot is left.
+  template <class State, class States>
+  bool take(const State& s, int c, std::size_t n_objects, std::vector<int>& clusters, States& x,
+            Eigen::VectorXd& lw) {
+    while (next_ < order_.size()) {
+      const auto ci = std::size_t(clusters[std::size_t(order_[next_])]);
+      if (ci == 0 || counts_[ci] > 1) break;
+      ++next_;
+    }
+    if (next_ == order_.size() || taken_ == limit_) return false;
+    ++taken_;
+    const Eigen::Index slot = order_[next_++];
+    if (counts_.size() < n_objects + 1) counts_.resize(n_objects + 1, 0);
+    --counts_[std::size_t(clusters[std::size_t(slot)])];
+    ++counts_[std::size_t(c)];
+    x.row(slot) = s.transpose();
+    clusters[std::size_t(slot)] = c;
+    lw[slot] = -std::log(double(lw.size()));
+    return true;
+  }
+
+ private:
+  std::vector<Eigen::Index> order_;
+  std::vector<int> counts_;
+  std::size_t limit_, next_ = 0, taken_ = 0;
+};
+
+}  // namespace
+
 void ReclusteringSir::inject() {
   std::vector<int> novel;
   std::vector<double> novelty;
   novel_measurements(novel, novelty);
   const double min_points = std::max(1.0, params_.min_object_fraction * expected_points());
   if (double(novel.size()) < min_points) return;
-  // The nearest object whose gate holds the centre of state s (index + 1), or 0.
-  auto gate_of = [&](const Eigen::Matrix<float, 6, 1>& s) { return nearest_gate(s[0], s[1]); };
-  // A new object at s if its ellipse holds min_points novel measurements (its index + 1), or -1.
-  auto found = [&](const Eigen::Matrix<float, 6, 1>& s) {
-    int inside = 0;
-    for (const int j : novel) inside += ellipse_d2(s, z_(0, j), z_(1, j)) <= 1.0f ? 1 : 0;
-    if (double(inside) < min_points) return -1;
-    Object o;
-    o.label = next_label_++;
-    o.birth_frame = frame_;
-    o.estimate = s;
-    objects_.push_back(o);
-    return int(objects_.size());
-  };
-  // Where a particle at state s goes (§2 re-clustering): the nearest object whose gate holds its
-  // centre; else a new object if its ellipse holds min_points novel measurements; else nowhere.
-  auto place = [&](const Eigen::Matrix<float, 6, 1>& s) {
-    const int c = gate_of(s);
-    return c > 0 ? c : found(s);
-  };
   Particles::States x = particles_.states();
   Eigen::VectorXd lw = particles_.log_weights();
-  const Eigen::Index n = x.rows();
   // §2.2's free particles: the most likely one may found an object (the initialisation's path to
   // the first objects; injection is the other).
-  Eigen::Index best_free = -1;
-  for (Eigen::Index i = 0; i < n; ++i) {
-    if (clusters_[std::size_t(i)] == 0 && (best_free < 0 || lw[i] > lw[best_free])) best_free = i;
-  }
-  if (best_free >= 0) {
-    const int c = place(x.row(best_free).transpose());
-    if (c > 0) clusters_[std::size_t(best_free)] = c;
-  }
-  // Replacement slots: free particles first, then the lowest weighted, never an object's last.
-  std::vector<Eigen::Index> order(static_cast<std::size_t>(n));
-  std::iota(order.begin(), order.end(), Eigen::Index(0));
-  std::stable_sort(order.begin(), order.end(), [&](Eigen::Index a, Eigen::Index b) {
-    const bool fa = clusters_[std::size_t(a)] == 0, fb = clusters_[std::size_t(b)] == 0;
-    return fa != fb ? fa : lw[a] < lw[b];
-  });
-  std::vector<int> counts(objects_.size() + 1, 0);
-  for (const int c : clusters_) ++counts[std::size_t(c)];
+  place_best_free(x, lw, novel, min_points);
   // At most k particles are injected; candidates that neither join nor found an object (drawn
   // on a noise speck) take no slot, so up to kCandidates k are drawn.
   constexpr std::size_t kCandidates = 4;
-  const auto k = std::size_t(std::ceil(params_.inject_fraction * double(n)));
+  const auto k = std::size_t(std::ceil(params_.inject_fraction * double(x.rows())));
   if (k == 0) return;
   std::vector<std::int64_t> drawn(kCandidates * k);
   core::resample(core::ResamplingScheme::Multinomial,
                  Eigen::Map<const Eigen::VectorXd>(novelty.data(), Eigen::Index(novelty.size())),
                  drawn.size(), rng_, drawn.data());
-  std::size_t injected = 0;
-  const double hw = 0.5 * params_.size.size_aspect * person_h_, hh = 0.5 * person_h_;
-  const double sxy = params_.sigma_xy * person_h_, sv = params_.sigma_velocity * person_h_;
-  std::size_t next_slot = 0;
-  // Puts s into the lowest-weighted particle whose cluster keeps another one, in cluster c.
-  auto take_slot = [&](const Eigen::Matrix<float, 6, 1>& s, int c) {
-    while (next_slot < order.size()) {
-      const auto ci = std::size_t(clusters_[std::size_t(order[next_slot])]);
-      if (ci == 0 || counts[ci] > 1) break;
-      ++next_slot;
-    }
-    if (next_slot == order.size() || injected == k) return false;
-    ++injected;
-    const Eigen::Index slot = order[next_slot++];
-    if (counts.size() < objects_.size() + 1) counts.resize(objects_.size() + 1, 0);
-    --counts[std::size_t(clusters_[std::size_t(slot)])];
-    ++counts[std::size_t(c)];
-    x.row(slot) = s.transpose();
-    clusters_[std::size_t(slot)] = c;
-    lw[slot] = -std::log(double(n));
-    return true;
-  };
-  std::vector<Eigen::Matrix<float, 6, 1>> joins;
+  InjectionSlots slots(clusters_, lw, objects_.size(), k);
+  std::vector<State> joins;
   for (const std::int64_t d : drawn) {
     // Near the drawn measurement: at the centroid of the novel measurements within a person's
     // ellipse of it, so that the injections drawn from one person's pixels land near one centre
     // and found one object, not one per body part.
-    const Eigen::Vector2f centre = novel_centroid(novel, z_.col(novel[std::size_t(d)]));
-    Eigen::Matrix<float, 6, 1> s;
-    s << float(centre[0] + sxy * rng_.normal()), float(centre[1] + sxy * rng_.normal()),
-        float(sv * rng_.normal()), float(sv * rng_.normal()),
-        float(std::clamp(hw * (1.0 + params_.size.size_std * rng_.normal()), params_.size.size_min * hw,
-                         params_.size.size_max * hw)),
-        float(std::clamp(hh * (1.0 + params_.size.size_std * rng_.normal()), params_.size.size_min * hh,
-                         params_.size.size_max * hh));
+    const State s = injection_state(novel_centroid(novel, z_.col(novel[std::size_t(d)])));
     // Candidates that start objects take slots first, then those joining one: the draws come
     // in measurement (raster) order, and joins into the objects above would otherwise use up
     // the slots before a new person lower in the image is reached.
-    if (gate_of(s) > 0) {
+    if (nearest_gate(s[0], s[1]) > 0) {
       joins.push_back(s);
       continue;
     }
-    const int c = found(s);
-    if (c > 0 && !take_slot(s, c)) break;
+    const int c = found_object(s, novel, min_points);
+    if (c > 0 && !slots.take(s, c, objects_.size(), clusters_, x, lw)) break;
   }
-  for (const auto& s : joins) {
-    if (!take_slot(s, gate_of(s))) break;
+  for (const State& s : joins) {
+    if (!slots.take(s, nearest_gate(s[0], s[1]), objects_.size(), clusters_, x, lw)) break;
   }
   particles_ = Particles(std::move(x), lw);  // normalises the weights
 }

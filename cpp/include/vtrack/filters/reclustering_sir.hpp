@@ -182,6 +182,7 @@ double ellipse_log_likelihood(float cx, float cy, float a, float b,
 class ReclusteringSir {
  public:
   using Particles = smc::ParticleSet<float, 6>;  // (x, y, vx, vy, a, b), one per row
+  using State = Eigen::Matrix<float, 6, 1>;
 
   struct Object {
     std::uint64_t label;
@@ -219,7 +220,16 @@ class ReclusteringSir {
   void associate();
   void weigh();
   void update_estimates();
+  // Step 6 (Fig. 1): injection of particles near novel measurements; new objects.
   void inject();
+  // The most likely free particle joins the object whose gate holds it or founds one.
+  void place_best_free(const Particles::States& x, const Eigen::VectorXd& lw,
+                       const std::vector<int>& novel, double min_points);
+  // A new object at s when its ellipse holds min_points novel measurements: its index + 1, or -1.
+  int found_object(const State& s, const std::vector<int>& novel, double min_points);
+  // A particle drawn around `centre`: position N(centre, sigma_xy^2), velocity N(0, ...), axes
+  // N(prior, (size_std prior)^2) clamped to the prior's range.
+  State injection_state(const Eigen::Vector2f& centre);
   void recluster();
   void resample();
   void report();
