@@ -57,7 +57,13 @@ void WeightUpdate::block(Eigen::Index b, const double* log_w, const double* log_
     }  // (not found: finite values whose sum overflowed; carry on)
   }
   s.max = tv.maxCoeff();
+  // Its first index: eight at a time (the test of a group vectorises), then within the group.
   Eigen::Index first = 0;
+  for (; first + 8 <= n; first += 8) {
+    bool hit = false;
+    for (int k = 0; k < 8; ++k) hit |= t[first + k] == s.max;
+    if (hit) break;
+  }
   while (first + 1 < n && t[first] != s.max) ++first;
   s.argmax = r.begin + first;
   // exp(t - max): zero everywhere when the whole block is -inf. Eigen's sums are vectorised with a
@@ -147,22 +153,55 @@ void WeightUpdate::resample_systematic(std::size_t count, double offset,
     const std::int64_t end = first_slot[bi + 1];
     if (begin == end) return;  // (a block of positive weight whose points all fall in others)
     const BlockRange r = block_range(b, n_);
-    const double* e = scaled_.data();
-    const double f = scale_[bi];
+    const double* e = scaled_.data() + r.begin;
+    const Eigen::Index n = r.size();
+    // The block's cumulative weights, prefix + f (running sum of e), with the running sum split
+    // into four chains over the block's quarters that advance together: a sum's latency per
+    // particle would otherwise be the loop's critical path. Quarter k starts at the sum of the
+    // quarters before it, so the sums stay non-decreasing across the quarters.
+    alignas(64) double cum[kBlockSize];
+    const Eigen::Index q = (n + 3) / 4;
+    Eigen::Index len[4];
+    for (int k = 0; k < 4; ++k) len[k] = std::max<Eigen::Index>(0, std::min(q, n - k * q));
+    double run[4] = {0.0, 0.0, 0.0, 0.0};
+    for (Eigen::Index j = 0; j < len[3]; ++j) {
+      for (int k = 0; k < 4; ++k) {
+        run[k] += e[k * q + j];
+        cum[k * q + j] = run[k];
+      }
+    }
+    for (int k = 0; k < 3; ++k) {
+      for (Eigen::Index j = len[3]; j < len[k]; ++j) {
+        run[k] += e[k * q + j];
+        cum[k * q + j] = run[k];
+      }
+    }
+    double base = 0.0;
+    for (int k = 0; k < 4; ++k) {
+      // The first slot past each particle's cumulative weight, as an exact double (vectorises).
+      const double p0 = prefix[bi];
+      const double f = scale_[bi];
+      const double last = static_cast<double>(end);
+      double* c = cum + k * q;
+      for (Eigen::Index j = 0; j < len[k]; ++j) {
+        const double p = std::ceil((p0 + f * (base + c[j])) * points_per_weight - offset);
+        c[j] = std::min(last, std::max(0.0, p));
+      }
+      base += run[k];
+    }
     // The marks of core/resampling.cpp's systematic(): particle i writes its index into the first
     // slot it would own; a running maximum then fills the runs. Marks past the block's last
     // filled slot go to `dummy`.
     std::fill(ancestors + begin, ancestors + end, std::int64_t{0});
     std::int64_t dummy = 0;
     std::int64_t filled = begin;
-    double running = 0.0;
-    Eigen::Index last_positive = r.begin;
-    for (Eigen::Index i = r.begin; i < r.end; ++i) {
-      *(filled < end ? ancestors + filled : &dummy) = i;
-      running += e[i];
-      filled = std::max(filled, std::min(end, slot(prefix[bi] + f * running)));
-      last_positive = e[i] > 0.0 ? i : last_positive;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      *(filled < end ? ancestors + filled : &dummy) = r.begin + i;
+      filled = static_cast<std::int64_t>(cum[i]);
     }
+    Eigen::Index last_positive = n - 1;
+    while (last_positive > 0 && !(e[last_positive] > 0.0)) --last_positive;
+    last_positive += r.begin;
     std::int64_t current = r.begin;
     for (std::int64_t j = begin; j < filled; ++j) {
       current = std::max(current, ancestors[j]);
