@@ -300,8 +300,10 @@ class Sir {
       }
     }
     const ReweightResult result = z ? update_.finish() : ReweightResult{-kInf, 0.0, 0};
-    // Commit: the old states become the ancestors' states (prev_), the new ones the set's.
-    prev_.swap(set_.states());
+    // Commit: the new states become the set's; the moves keep the old ones as the ancestors'
+    // states (prev_). Without moves two buffers alternate, so the next propagation writes over
+    // the states it has just read (still in cache at large N) rather than older ones.
+    if (keep_noise()) prev_.swap(set_.states());
     set_.states().swap(next_);
     pending_ = false;
     resampled_ = false;
