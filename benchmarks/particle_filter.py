@@ -52,6 +52,26 @@ MCMC regulariser 0.84 M (vtrack 20x Stone Soup). The issue's 10x-NumPy bar at 1e
 the NumPy reference runs at 43 % of NumPy's own floor (its normals and exponentials alone), and
 vtrack's SIR already runs 1.6x faster than that floor (vtrack's own floor per stage is measured by
 benchmarks/cpp/smc_micro.cpp).
+
+Measured again 2026-11-24 after fusing the systematic resampling into the weight update (branch
+sir-fused: the weights are never written out, no validation pass, equal weights written lazily,
+the cumulative sum in four chains; two state buffers instead of three), vtrack and NumPy rows
+only, load average 9-14 on the 2 vCPUs, `--repeats 5 --clock cpu` through this file's functions:
+
+| N | vtrack SIR | NumPy ref. | ratio | RMSE vtrack / NumPy |
+|---|---|---|---|---|
+| 1e3 | 46.9 M | 5.84 M | 8.03x | 2.16 / 2.25 |
+| 1e4 | 50.6 M | 9.67 M | 5.23x | 2.15 / 2.18 |
+| 1e5 | 41.2 M | 9.37 M | 4.40x | 2.14 / 2.14 |
+
+Resample-move at 1e5 in the same run: vtrack 13.4 M, Stone Soup's MCMC regulariser 0.69 M (19.5x;
+the 17.1 M / 20x above was measured at a lower load). The ancestors are the same as before the
+fusion on this problem (same estimates for the same seed). The C++ step at 1e5 went from ~25 to
+~22-23.5 ns per particle (smc_micro.cpp). The 10x bar is still not met, and the rest of the gap is
+mostly the machine's floor: 10x NumPy is ~94-107 M/s, 9.3-10.7 ns per particle-step, while the
+4 normals (3.9-4.2 ns), the exp (0.5 ns) and the likelihood's sqrt + division + atan2 in double
+(~3 ns) alone take ~7.5-8 ns. That leaves ~2 ns for the propagation, weight sums, resampling,
+gather and the 3.2 MB of states per pass, which now take ~14 ns (see smc_micro.cpp's header).
 """
 
 import argparse

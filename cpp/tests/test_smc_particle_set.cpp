@@ -4,9 +4,12 @@
 #include <cmath>
 #include <limits>
 #include <set>
+#include <stdexcept>
+#include <vector>
 
 #include "vtrack/core/errors.hpp"
 #include "vtrack/core/random.hpp"
+#include "vtrack/core/resampling.hpp"
 #include "vtrack/smc/particle_set.hpp"
 
 using namespace vtrack;
@@ -160,4 +163,88 @@ TEST(SmcParticleSet, RejectsBadWeights) {
   ParticleSet<double> set(x);
   core::Rng rng(1);
   EXPECT_THROW(set.resample(core::ResamplingScheme::Systematic, 0, rng), InvalidArgument);
+}
+
+namespace {
+
+// A WeightUpdate of n particles (uniform prior weights) with the given log-likelihoods.
+smc::ReweightResult update_with(smc::WeightUpdate& update, const Eigen::VectorXd& log_lik,
+                                bool keep_log) {
+  const Eigen::Index n = log_lik.size();
+  update.begin(n, 0, keep_log);
+  for (Eigen::Index b = 0; b < smc::block_count(n); ++b) {
+    const Eigen::Index begin = smc::block_range(b, n).begin;
+    update.block(b, nullptr, log_lik.data() + begin, nullptr, -std::log(static_cast<double>(n)));
+  }
+  return update.finish();
+}
+
+}  // namespace
+
+TEST(SmcParticleSet, BlockwiseSystematicResamplingMatchesTheSchemeOnTheWrittenWeights) {
+  // Reference: core::resample's systematic scheme on the committed weights, with the same offset.
+  // The blockwise cumulative sums differ from the sequential ones by round-off only, so the
+  // ancestors agree except for a point that falls within ~1e-16 of a cumulative weight.
+  core::Rng rng(7);
+  for (const Eigen::Index n : {1, 5, 1024, 1025, 5000, 20000}) {
+    Eigen::VectorXd log_lik(n);
+    rng.fill_normal(log_lik.data(), static_cast<std::size_t>(n));
+    log_lik *= 3.0;
+    for (Eigen::Index i = 3; i < n; i += 11) log_lik[i] = -kInf;  // zero weights, never drawn
+    smc::WeightUpdate update;
+    ASSERT_TRUE(update_with(update, log_lik, false).updated());
+    Eigen::VectorXd log_w, w;
+    update.commit(log_w, w, 1, false);
+    for (const std::size_t count : {std::size_t{1}, static_cast<std::size_t>(n), std::size_t{3000}}) {
+      std::vector<std::int64_t> fused(count), reference(count);
+      core::Rng replay = rng;  // core::resample draws its offset, one uniform, from the generator
+      const double offset = rng.uniform();
+      update.resample_systematic(count, offset, fused.data(), 1);
+      core::resample(core::ResamplingScheme::Systematic, w, count, replay, reference.data());
+      std::size_t differ = 0;
+      for (std::size_t j = 0; j < count; ++j) {
+        differ += fused[j] != reference[j];
+        ASSERT_GE(fused[j], 0);
+        ASSERT_LT(fused[j], n);
+        EXPECT_GT(w[fused[j]], 0.0) << "a zero-weight particle was drawn, n = " << n;
+        if (j > 0) EXPECT_GE(fused[j], fused[j - 1]);
+      }
+      EXPECT_EQ(differ, 0u) << "n = " << n << ", count = " << count;
+      // Any thread count: the same ancestors.
+      std::vector<std::int64_t> threaded(count);
+      update.resample_systematic(count, offset, threaded.data(), 2);
+      EXPECT_EQ(threaded, fused);
+    }
+  }
+}
+
+TEST(SmcParticleSet, BlockwiseSystematicResamplingCopiesEachParticleByItsWeight) {
+  // Systematic resampling gives particle i floor(N w_i) or ceil(N w_i) copies.
+  core::Rng rng(11);
+  const Eigen::Index n = 4096;
+  Eigen::VectorXd log_lik(n);
+  rng.fill_normal(log_lik.data(), static_cast<std::size_t>(n));
+  smc::WeightUpdate update;
+  ASSERT_TRUE(update_with(update, log_lik, false).updated());
+  Eigen::VectorXd log_w, w;
+  update.commit(log_w, w, 1, false);
+  std::vector<std::int64_t> a(static_cast<std::size_t>(n));
+  update.resample_systematic(static_cast<std::size_t>(n), 0.37, a.data(), 1);
+  std::vector<int> copies(static_cast<std::size_t>(n), 0);
+  for (std::int64_t i : a) ++copies[static_cast<std::size_t>(i)];
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double expected = static_cast<double>(n) * w[i];
+    EXPECT_GE(copies[static_cast<std::size_t>(i)], std::floor(expected) - 1e-9) << i;
+    EXPECT_LE(copies[static_cast<std::size_t>(i)], std::ceil(expected) + 1e-9) << i;
+  }
+}
+
+TEST(SmcParticleSet, WeightUpdateWithoutLogWeightsRefusesToWriteThem) {
+  Eigen::VectorXd log_lik = Eigen::VectorXd::LinSpaced(100, -3.0, 1.0);
+  smc::WeightUpdate update;
+  update_with(update, log_lik, false);
+  Eigen::VectorXd log_w, w;
+  EXPECT_THROW(update.commit(log_w, w, 1, true), std::logic_error);
+  update.commit(log_w, w, 1, false);
+  EXPECT_NEAR(w.sum(), 1.0, 1e-12);
 }

@@ -1,7 +1,9 @@
 #include "vtrack/smc/reweight.hpp"
 
 #include <cmath>
+#include <algorithm>
 #include <limits>
+#include <stdexcept>
 #include <string>
 
 #include "vtrack/core/errors.hpp"
@@ -15,28 +17,34 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 }  // namespace
 
-void WeightUpdate::begin(Eigen::Index n, Eigen::Index d) {
+void WeightUpdate::begin(Eigen::Index n, Eigen::Index d, bool keep_log) {
   n_ = n;
   d_ = d;
-  updated_.resize(n);
+  keep_log_ = keep_log;
+  if (keep_log_) updated_.resize(n);
   scaled_.resize(n);
-  blocks_.assign(static_cast<std::size_t>(block_count(n)), BlockSums{-kInf, 0.0, 0.0, -1});
+  blocks_.assign(static_cast<std::size_t>(block_count(n)), BlockSums{-kInf, 0.0, 0.0, -1, 0});
   block_state_sums_.setZero(d, static_cast<Eigen::Index>(blocks_.size()));
 }
 
 void WeightUpdate::block(Eigen::Index b, const double* log_w, const double* log_lik,
-                         const models::StatesView<double>* states) {
+                         const models::StatesView<double>* states, double uniform_log_w) {
   const BlockRange r = block_range(b, n_);
-  double* t = updated_.data() + r.begin;
-  double* e = scaled_.data() + r.begin;
-  const double* lw = log_w;
-  const double* ll = log_lik;
   const Eigen::Index n = r.size();
+  // t in the whole-set array when the log weights are kept, else in a block buffer (in cache).
+  alignas(64) double local[kBlockSize];
+  double* t = keep_log_ ? updated_.data() + r.begin : local;
+  double* e = scaled_.data() + r.begin;
   Eigen::Map<Eigen::ArrayXd> tv(t, n);
   Eigen::Map<Eigen::ArrayXd> ev(e, n);
-  tv = Eigen::Map<const Eigen::ArrayXd>(lw, n) + Eigen::Map<const Eigen::ArrayXd>(ll, n);
+  const Eigen::Map<const Eigen::ArrayXd> ll(log_lik, n);
+  if (log_w) {
+    tv = Eigen::Map<const Eigen::ArrayXd>(log_w, n) + ll;
+  } else {
+    tv = uniform_log_w + ll;  // the same values as an array of uniform_log_w
+  }
   BlockSums& s = blocks_[static_cast<std::size_t>(b)];
-  s = {-kInf, 0.0, 0.0, -1};
+  s = {-kInf, 0.0, 0.0, -1, r.begin};
   // A NaN or +inf anywhere makes the sum NaN or +inf (-inf entries alone give -inf): one
   // vectorised pass instead of a test per particle; the culprit is looked up only then.
   const double check = tv.sum();
@@ -49,6 +57,15 @@ void WeightUpdate::block(Eigen::Index b, const double* log_w, const double* log_
     }  // (not found: finite values whose sum overflowed; carry on)
   }
   s.max = tv.maxCoeff();
+  // Its first index: eight at a time (the test of a group vectorises), then within the group.
+  Eigen::Index first = 0;
+  for (; first + 8 <= n; first += 8) {
+    bool hit = false;
+    for (int k = 0; k < 8; ++k) hit |= t[first + k] == s.max;
+    if (hit) break;
+  }
+  while (first + 1 < n && t[first] != s.max) ++first;
+  s.argmax = r.begin + first;
   // exp(t - max): zero everywhere when the whole block is -inf. Eigen's sums are vectorised with a
   // fixed order, so they are reproducible.
   const double shift = s.max == -kInf ? 0.0 : s.max;
@@ -77,8 +94,7 @@ ReweightResult WeightUpdate::finish() {
   }
   if (peak == -kInf || n_ == 0) return {-kInf, 0.0, 0};  // nothing learnt: weights kept
   // The particle of largest weight: the first maximum of the first block that holds one.
-  Eigen::Index argmax = block_range(best_block, n_).begin;
-  while (updated_[argmax] != peak) ++argmax;
+  const Eigen::Index argmax = blocks_[static_cast<std::size_t>(best_block)].argmax;
   // Blocks combined in order: total = sum_b sum_b' e^(max_b - peak).
   double total = 0.0;
   double total_sq = 0.0;
@@ -99,6 +115,9 @@ ReweightResult WeightUpdate::finish() {
 
 void WeightUpdate::commit(Eigen::VectorXd& log_w, Eigen::VectorXd& weights, int threads,
                           bool log_weights) const {
+  if (log_weights && !keep_log_) {
+    throw std::logic_error("WeightUpdate::commit: log weights asked for but not kept");
+  }
   log_w.resize(n_);
   weights.resize(n_);
   for_blocks(static_cast<Eigen::Index>(blocks_.size()), threads, [&](Eigen::Index b) {
@@ -108,6 +127,95 @@ void WeightUpdate::commit(Eigen::VectorXd& log_w, Eigen::VectorXd& weights, int 
     if (!log_weights) return;
     for (Eigen::Index i = r.begin; i < r.end; ++i) log_w[i] = updated_[i] - log_total_;
   });
+}
+
+void WeightUpdate::resample_systematic(std::size_t count, double offset,
+                                       std::int64_t* ancestors, int threads) const {
+  // The cumulative weight before block b (normalised weights: block b weighs sum_b scale_b).
+  const std::size_t blocks = blocks_.size();
+  std::vector<double> prefix(blocks + 1, 0.0);
+  for (std::size_t b = 0; b < blocks; ++b) prefix[b + 1] = prefix[b] + blocks_[b].sum * scale_[b];
+  // As core::resample's systematic scheme: the points (j + offset) / count * total, and a
+  // particle whose cumulative weight is C receives the points below it not taken before it,
+  // i.e. up to slot ceil(C count / total - offset).
+  const auto total_points = static_cast<std::int64_t>(count);
+  const double points_per_weight = static_cast<double>(count) / prefix[blocks];
+  auto slot = [&](double cumulative) {
+    const double p = std::ceil(cumulative * points_per_weight - offset);
+    return p <= 0.0 ? std::int64_t{0}
+                    : (p >= static_cast<double>(count) ? total_points : static_cast<std::int64_t>(p));
+  };
+  std::vector<std::int64_t> first_slot(blocks + 1);
+  for (std::size_t b = 0; b <= blocks; ++b) first_slot[b] = slot(prefix[b]);
+  for_blocks(static_cast<Eigen::Index>(blocks), threads, [&](Eigen::Index b) {
+    const auto bi = static_cast<std::size_t>(b);
+    const std::int64_t begin = first_slot[bi];
+    const std::int64_t end = first_slot[bi + 1];
+    if (begin == end) return;  // (a block of positive weight whose points all fall in others)
+    const BlockRange r = block_range(b, n_);
+    const double* e = scaled_.data() + r.begin;
+    const Eigen::Index n = r.size();
+    // The block's cumulative weights, prefix + f (running sum of e), with the running sum split
+    // into four chains over the block's quarters that advance together: a sum's latency per
+    // particle would otherwise be the loop's critical path. Quarter k starts at the sum of the
+    // quarters before it, so the sums stay non-decreasing across the quarters.
+    alignas(64) double cum[kBlockSize];
+    const Eigen::Index q = (n + 3) / 4;
+    Eigen::Index len[4];
+    for (int k = 0; k < 4; ++k) len[k] = std::max<Eigen::Index>(0, std::min(q, n - k * q));
+    double run[4] = {0.0, 0.0, 0.0, 0.0};
+    for (Eigen::Index j = 0; j < len[3]; ++j) {
+      for (int k = 0; k < 4; ++k) {
+        run[k] += e[k * q + j];
+        cum[k * q + j] = run[k];
+      }
+    }
+    for (int k = 0; k < 3; ++k) {
+      for (Eigen::Index j = len[3]; j < len[k]; ++j) {
+        run[k] += e[k * q + j];
+        cum[k * q + j] = run[k];
+      }
+    }
+    double base = 0.0;
+    for (int k = 0; k < 4; ++k) {
+      // The first slot past each particle's cumulative weight, as an exact double (vectorises).
+      const double p0 = prefix[bi];
+      const double f = scale_[bi];
+      const double last = static_cast<double>(end);
+      double* c = cum + k * q;
+      for (Eigen::Index j = 0; j < len[k]; ++j) {
+        const double p = std::ceil((p0 + f * (base + c[j])) * points_per_weight - offset);
+        c[j] = std::min(last, std::max(0.0, p));
+      }
+      base += run[k];
+    }
+    // The marks of core/resampling.cpp's systematic(): particle i writes its index into the first
+    // slot it would own; a running maximum then fills the runs. Marks past the block's last
+    // filled slot go to `dummy`.
+    std::fill(ancestors + begin, ancestors + end, std::int64_t{0});
+    std::int64_t dummy = 0;
+    std::int64_t filled = begin;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      *(filled < end ? ancestors + filled : &dummy) = r.begin + i;
+      filled = static_cast<std::int64_t>(cum[i]);
+    }
+    Eigen::Index last_positive = n - 1;
+    while (last_positive > 0 && !(e[last_positive] > 0.0)) --last_positive;
+    last_positive += r.begin;
+    std::int64_t current = r.begin;
+    for (std::int64_t j = begin; j < filled; ++j) {
+      current = std::max(current, ancestors[j]);
+      ancestors[j] = current;
+    }
+    // Round-off between the running sum and the block total: the rest to the last positive one.
+    for (std::int64_t j = filled; j < end; ++j) ancestors[j] = last_positive;
+  });
+  if (first_slot[blocks] < total_points) {
+    // Round-off at the very end: the last particle of positive weight.
+    Eigen::Index last = n_ - 1;
+    while (last > 0 && !(scaled_[last] > 0.0 && scale_[static_cast<std::size_t>(last / kBlockSize)] > 0.0)) --last;
+    std::fill(ancestors + first_slot[blocks], ancestors + total_points, static_cast<std::int64_t>(last));
+  }
 }
 
 ReweightResult reweight(Eigen::VectorXd& log_w, Eigen::VectorXd& weights,

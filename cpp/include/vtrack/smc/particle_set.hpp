@@ -126,6 +126,12 @@ class ParticleSet {
     ancestors_.resize(static_cast<std::size_t>(count));
     core::resample(scheme, w_, static_cast<std::size_t>(count), rng, ancestors_.data());
   }
+  // The ancestor array to fill (count entries), for a filter that draws them itself
+  // (WeightUpdate::resample_systematic); it then gathers the states and calls set_uniform().
+  std::int64_t* ancestors_buffer(Eigen::Index count) {
+    ancestors_.resize(static_cast<std::size_t>(count));
+    return ancestors_.data();
+  }
   void set_uniform() {
     const Eigen::Index n = states_.rows();
     log_w_.setConstant(n, n > 0 ? -std::log(static_cast<double>(n)) : 0.0);

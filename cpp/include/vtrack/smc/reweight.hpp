@@ -31,13 +31,16 @@ struct ReweightResult {
 //   begin(n, d); for every block, in parallel: block(b, ...); finish(); commit(...).
 class WeightUpdate {
  public:
-  // n particles; with d > 0 the blocks also sum their weighted states (for mean()).
-  void begin(Eigen::Index n, Eigen::Index d = 0);
+  // n particles; with d > 0 the blocks also sum their weighted states (for mean()). Without
+  // keep_log the updated log weights are not stored (a filter that resamples whatever the result
+  // saves a pass over memory): commit() then writes only the linear weights.
+  void begin(Eigen::Index n, Eigen::Index d = 0, bool keep_log = true);
   // For the particles of block b: t_i = log_w_i + log_lik_i, exp(t_i - max_b t) and the block's
   // sums; with `states` (the block's n_b x d rows) also sum_i exp(t_i - max_b t) x_i. log_w and
-  // log_lik point at the block's first particle; thread-safe across blocks.
+  // log_lik point at the block's first particle; log_w = nullptr means every log_w_i is
+  // `uniform_log_w` (equal weights, e.g. right after resampling). Thread-safe across blocks.
   void block(Eigen::Index b, const double* log_w, const double* log_lik,
-             const models::StatesView<double>* states = nullptr);
+             const models::StatesView<double>* states = nullptr, double uniform_log_w = 0.0);
   // Combines the blocks in order. InvalidArgument on a NaN or +inf t_i. Writes nothing.
   ReweightResult finish();
   // The weighted mean sum_i w_i x_i under the updated weights (part-based eq. 8), after finish()
@@ -47,6 +50,15 @@ class WeightUpdate {
   // (a filter about to resample skips them: they become -log N). Only after an update.
   void commit(Eigen::VectorXd& log_w, Eigen::VectorXd& weights, int threads,
               bool log_weights = true) const;
+  // Systematic resampling (core/resampling.hpp) of `count` particles from the updated weights,
+  // read where the blocks left them (the weights are never written out): `offset` is the scheme's
+  // one uniform in [0, 1). After finish() of an update. Each block fills the output slots its
+  // cumulative weight covers, so blocks run in parallel with the same result for any `threads`.
+  // The cumulative sums are formed per block (block prefix + the block's running sum), so near a
+  // point the choice can differ by round-off (1e-16 relative) from core::resample on the committed
+  // weights; a particle of zero weight is never drawn.
+  void resample_systematic(std::size_t count, double offset, std::int64_t* ancestors,
+                           int threads) const;
 
  private:
   struct BlockSums {
@@ -54,10 +66,12 @@ class WeightUpdate {
     double sum;     // sum_i exp(t_i - max)
     double sum_sq;  // sum_i exp(t_i - max)^2
     Eigen::Index invalid;  // first index with NaN or +inf t_i, or -1
+    Eigen::Index argmax;   // first index of the block's max
   };
   Eigen::Index n_ = 0;
   Eigen::Index d_ = 0;
-  Eigen::VectorXd updated_;  // t
+  bool keep_log_ = true;
+  Eigen::VectorXd updated_;  // t (only with keep_log)
   Eigen::VectorXd scaled_;   // exp(t - block max)
   std::vector<BlockSums> blocks_;
   Eigen::MatrixXd block_state_sums_;  // d x blocks

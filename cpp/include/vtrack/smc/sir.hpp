@@ -129,6 +129,7 @@ class Sir {
       set_.states().swap(next_);
       pending_ = false;
     }
+    write_uniform_weights();
     return set_;
   }
   const SirParams& params() const { return params_; }
@@ -233,6 +234,11 @@ class Sir {
       proposal_.propagate(prev, eps, *z, next_.middleRows(r.begin, n));
     }
   }
+  void write_uniform_weights() const {
+    if (!weights_uniform_) return;
+    set_.set_uniform();
+    weights_uniform_ = false;
+  }
   bool keep_noise() const { return params_.resample_move_steps > 0; }
   // log-likelihoods (and proposal corrections) of block b's new states, and its weight sums. The
   // log-likelihoods go to loglik_ when the moves (or a whole-array model) need them there, else
@@ -253,7 +259,11 @@ class Sir {
                            x, z, correction.data());
       Eigen::Map<Eigen::VectorXd>(ll, r.size()) += correction;
     }
-    update_.block(b, set_.log_weights().data() + r.begin, ll, &x);
+    if (weights_uniform_) {
+      update_.block(b, nullptr, ll, &x, -std::log(static_cast<double>(set_.size())));
+    } else {
+      update_.block(b, set_.log_weights().data() + r.begin, ll, &x);
+    }
   }
   bool keep_loglik() const { return kWholeObservation || keep_noise(); }
 
@@ -265,9 +275,11 @@ class Sir {
     streams_.reserve(blocks);
     next_.resize(n, motion_.dim());
     if (keep_noise()) eps_.resize(n, noise_dim());
+    // ess_threshold 1 resamples whatever the update: its log weights are never needed.
+    const bool always_resample = params_.ess_threshold >= 1.0;
     if (z) {
       if (keep_loglik()) loglik_.resize(n);
-      update_.begin(n, motion_.dim());
+      update_.begin(n, motion_.dim(), !always_resample);
     }
     const int threads = params_.threads;
     if constexpr (!kWholeMotion && !kWholeObservation) {
@@ -288,8 +300,10 @@ class Sir {
       }
     }
     const ReweightResult result = z ? update_.finish() : ReweightResult{-kInf, 0.0, 0};
-    // Commit: the old states become the ancestors' states (prev_), the new ones the set's.
-    prev_.swap(set_.states());
+    // Commit: the new states become the set's; the moves keep the old ones as the ancestors'
+    // states (prev_). Without moves two buffers alternate, so the next propagation writes over
+    // the states it has just read (still in cache at large N) rather than older ones.
+    if (keep_noise()) prev_.swap(set_.states());
     set_.states().swap(next_);
     pending_ = false;
     resampled_ = false;
@@ -297,14 +311,21 @@ class Sir {
       last_log_normaliser_ = result.log_normaliser;
       log_evidence_ += result.log_normaliser;
     }
+    fused_resampling_ = false;
     if (z && result.updated()) {
-      resampled_ = result.ess <= params_.ess_threshold * static_cast<double>(n);
-      // Log weights that resampling is about to reset are not written.
-      update_.commit(set_.log_weights_buffer(), set_.weights_buffer(), threads, !resampled_);
+      resampled_ = always_resample || result.ess <= params_.ess_threshold * static_cast<double>(n);
+      // Systematic resampling reads the updated weights where the update left them; otherwise
+      // they are written (the log weights only if they are kept, i.e. not about to be reset).
+      fused_resampling_ = resampled_ && params_.resampling == core::ResamplingScheme::Systematic;
+      if (!fused_resampling_) {
+        update_.commit(set_.log_weights_buffer(), set_.weights_buffer(), threads, !resampled_);
+        weights_uniform_ = false;
+      }
       set_.set_updated(result);
       mean_ = update_.mean();
     } else {
       // No measurement, or nothing learnt from it: previous weights, predicted states.
+      write_uniform_weights();
       resampled_ = z && set_.ess() <= params_.ess_threshold * static_cast<double>(n);
       mean_ = set_.mean();
     }
@@ -316,11 +337,17 @@ class Sir {
     acceptance_rate_ = 0.0;
     if (!resampled_) return;
     const Eigen::Index n = set_.size();
-    set_.draw_ancestors(params_.resampling, n, rng_);
+    if (fused_resampling_) {
+      update_.resample_systematic(static_cast<std::size_t>(n), rng_.uniform(),
+                                  set_.ancestors_buffer(n), params_.threads);
+    } else {
+      set_.draw_ancestors(params_.resampling, n, rng_);
+    }
+    // Equal weights from now on; the arrays are written only when someone looks at them.
+    weights_uniform_ = true;
     if (kLazyGather && params_.resample_move_steps == 0) {
       // The states are gathered by the next propagation (or by particles()).
       pending_ = true;
-      set_.set_uniform();
       return;
     }
     const std::int64_t* a = set_.ancestors().data();
@@ -338,7 +365,6 @@ class Sir {
       gather_rows(loglik_, a, n, ll, threads);
       loglik_.swap(ll);
     }
-    set_.set_uniform();
     if (params_.resample_move_steps > 0) move(z);
   }
 
@@ -453,6 +479,9 @@ class Sir {
   mutable ParticleSet<double> set_;
   mutable Eigen::MatrixXd next_;
   mutable bool pending_ = false;
+  // The weights are equal (after a resampling) but set_'s weight arrays were not written yet.
+  mutable bool weights_uniform_ = false;
+  bool fused_resampling_ = false;  // the last update's resampling reads update_ directly
   Eigen::MatrixXd prev_, eps_;
   Eigen::VectorXd loglik_;
   Eigen::MatrixXd prop_eps_, prop_x_;
