@@ -22,9 +22,11 @@ change on this shared machine hits all of them alike):
   per task over 200 tasks on 1 worker, against the tracking time of one 100-frame vtest clip.
 
 Besides wall time, each row has the CPU seconds it cost: this process (the client, the scheduler,
-the sequential loops) plus every worker process (getrusage; the idle cluster's heartbeats are in
-every row). On a machine other jobs load, wall time measures the share of the cores this run got;
-the CPU column measures what Dask adds to the work itself.
+the sequential loops) plus every worker process (getrusage). Only the configuration being
+measured has a cluster alive: until 2026-11-24 both clusters lived through every row, and their
+idle heartbeats and system monitors cost CPU in every row (the sequential loop, single-threaded,
+showed ~1.3 CPU seconds per wall second). On a machine other jobs load, wall time measures the
+share of the cores this run got; the CPU column measures what Dask adds to the work itself.
 
 The bar (issue 15): 2 workers >= 1.8x the sequential throughput; Dask's per-task overhead < 1 % of
 a 100-frame clip's tracking time.
@@ -90,6 +92,7 @@ Loaded machine (the two runs above). What these say, and what they cannot:
 from __future__ import annotations
 
 import argparse
+import contextlib
 import logging
 import os
 import resource
@@ -214,27 +217,46 @@ def _cpu_seconds() -> float:
     return usage.ru_utime + usage.ru_stime
 
 
-def cpu_of(run, clients):
+@contextlib.contextmanager
+def local_cluster(n_workers: int):
+    """A client of a fresh LocalCluster of n single-threaded worker processes whose workers have
+    imported vtrack (started and closed off the clock)."""
+    from distributed import Client, LocalCluster  # noqa: PLC0415
+
+    cluster = LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True,
+                           dashboard_address=":0", silence_logs=logging.ERROR)
+    client = Client(cluster)
+    try:
+        client.run(lambda: __import__("vtrack.batch"))
+        yield client
+    finally:
+        client.close()
+        cluster.close()
+
+
+def cpu_of(run, client=None):
     """(wall seconds of run(), CPU seconds it cost): this process's (the client, and the local
-    clusters' schedulers, which run in it) plus every worker process's. The nannies' small
-    share is not counted."""
+    cluster's scheduler, which runs in it) plus every worker process's. The nannies' small share
+    is not counted."""
     def workers():
-        return sum(sum(c.run(_cpu_seconds).values()) for c in clients.values())
+        return sum(client.run(_cpu_seconds).values()) if client is not None else 0.0
 
     before = _cpu_seconds() + workers()
     wall = run()
     return wall, _cpu_seconds() + workers() - before
 
 
-def measure_rounds(clips, work: Path, clients, repeats: int):
+def measure_rounds(clips, work: Path, repeats: int):
     """({config: [wall seconds per round]}, {config: [CPU seconds per round]}), and the 1-min load
     at the start of each configuration. The order of the configurations turns by one each round,
-    so a load that rises or falls during a round does not always hit the same one."""
-    runners = {"seq": lambda out: sequential(clips, out, threads=1),
-               "seq-threads": lambda out: sequential(clips, out, threads=None),
-               "task": lambda out: task_loop(clips, out),
-               1: lambda out: batched(clips, out, clients[1]),
-               2: lambda out: batched(clips, out, clients[2])}
+    so a load that rises or falls during a round does not always hit the same one. Only the
+    configuration being measured has a cluster: an idle cluster's heartbeats and monitors cost
+    a share of a core, which would slow whatever else runs."""
+    runners = {"seq": lambda out, _: sequential(clips, out, threads=1),
+               "seq-threads": lambda out, _: sequential(clips, out, threads=None),
+               "task": lambda out, _: task_loop(clips, out),
+               1: lambda out, client: batched(clips, out, client),
+               2: lambda out, client: batched(clips, out, client)}
     keys = [key for _, key in CONFIGS]
     times = {key: [] for key in keys}
     cpu = {key: [] for key in keys}
@@ -243,8 +265,9 @@ def measure_rounds(clips, work: Path, clients, repeats: int):
         out = work / f"round{r}"
         for key in keys[r % len(keys):] + keys[:r % len(keys)]:
             (out / str(key)).mkdir(parents=True)
-            loads.append(os.getloadavg()[0])
-            wall, used = cpu_of(lambda: runners[key](out / str(key)), clients)
+            with (local_cluster(key) if isinstance(key, int) else contextlib.nullcontext()) as client:
+                loads.append(os.getloadavg()[0])
+                wall, used = cpu_of(lambda: runners[key](out / str(key), client), client)
             times[key].append(wall)
             cpu[key].append(used)
         for path, _ in clips:  # the batch wrote what the plain loop wrote
@@ -278,7 +301,7 @@ def report(times, cpu, frames: int, n_tasks: int, overheads: dict, loads) -> Non
         ["batch, 1 worker, minus the task loop, per input", f"{per_input * 1e3:.1f}",
          f"{per_input / track_s:.2%}"],
         ["tracking one 100-frame vtest clip (track_video)", f"{track_s * 1e3:.0f}", "100%"],
-        ["local cluster start (per cluster, 1-2 workers)", f"{overheads['start'] * 1e3:.0f}", ""],
+        ["local cluster start (2 workers, vtrack imported)", f"{overheads['start'] * 1e3:.0f}", ""],
     ])
     share = overheads["noop_serial"] / track_s
     print(f"\nbar: Dask per-task overhead < {BAR_OVERHEAD:.0%} of a 100-frame clip: {share:.3%} "
@@ -293,8 +316,6 @@ def main() -> int:
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--quick", action="store_true", help="2 vtest clips, 1 synthetic, 1 repeat")
     args = parser.parse_args()
-    from distributed import Client, LocalCluster
-
     logging.getLogger("distributed").setLevel(logging.ERROR)  # its INFO lines on start and close
     if not os.path.exists(args.video):
         print(f"sample video missing at {args.video} (make bench fetches it)", file=sys.stderr)
@@ -305,23 +326,15 @@ def main() -> int:
         clips = make_clips(args.video, work, n_clips, 100, n_synthetic)
         frames = sum(f for _, f in clips)
         print(f"{len(clips)} inputs, {frames} frames; {load_text()} at the start\n")
+        times, cpu, loads = measure_rounds(clips, work, repeats)
         start = time.perf_counter()
-        clusters = {n: LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                                    dashboard_address=":0", silence_logs=logging.ERROR)
-                    for n in (1, 2)}
-        clients = {n: Client(c) for n, c in clusters.items()}
-        for client in clients.values():  # every worker imports vtrack before the clock starts
-            client.run(lambda: __import__("vtrack.batch"))
-        overheads = {"start": (time.perf_counter() - start) / 2}
-        times, cpu, loads = measure_rounds(clips, work, clients, repeats)
-        overheads["noop"], overheads["noop_serial"] = dask_task_overhead(clients[1])
+        with local_cluster(2):
+            overheads = {"start": time.perf_counter() - start}
+        with local_cluster(1) as client:
+            overheads["noop"], overheads["noop_serial"] = dask_task_overhead(client)
         clip = clips[0][0]  # a 100-frame vtest clip
         overheads["track"] = median(_timed(lambda: vtrack.track_video(
             clip, "mb", seed=0, threads=1)) for _ in range(3))
-        for client in clients.values():
-            client.close()
-        for cluster in clusters.values():
-            cluster.close()
     finally:
         shutil.rmtree(work, ignore_errors=True)
     report(times, cpu, frames, len(clips), overheads, loads)

@@ -64,6 +64,32 @@ Table 2 (`--sweep 1.0,1.06,1.12`, MOTA/IDF1 at seeds 0, 1):
 on 1-397 against 0.571/0.548 and 0.587/0.549 at 1.06. Held out at 0.5x (not tuned on; that first
 sweep's statistic): 0.546/0.420 and 0.556/0.495 on all frames (the area-weighted statistic:
 0.503/0.490 at seed 0).
+
+Tuning log of the shared person-size and box-calibration parameters
+(filters/person_prior.hpp; moved here from the parameter headers):
+
+- Why learnt (benchmarks/pets09.py, MB with its defaults, MOTA / IDF1 all frames, seed 0): with
+  the former fixed 30 x 85 px prior, PETS09-S2L1 resized 0.5x gave -0.095 / 0.069 and 1.5x
+  -1.404 / 0.078; the 512 x 384 crop 0.315 / 0.372 and the 1.5x zoom -0.357 / 0.258. A prior
+  scaled with the image (h = 0.148 x image height) is right for a resize but wrong for a crop or a
+  closer camera (the crop's people are the same pixels in a smaller image), which the learnt one
+  gets right.
+- size_half_life (MB MOTA / IDF1, seed 0; all frames / 398-795): at 768 x 576 a half-life of 100
+  frames gave 0.374 / 0.433 and 0.228 / 0.331, never forgetting 0.496 / 0.454 and 0.427 / 0.417
+  (a fixed 85 px prior 0.534 / 0.469 and 0.492 / 0.439): in the second half people walk in
+  groups, the recent components grow taller and wider than one person, and a forgetting prior
+  follows them. At 384 x 288 (0.5x) 100 frames gave 0.447 / 0.425, never forgetting 0.410 / 0.457.
+- size_std, size_min, size_max: formerly 8 / 20 px, and 12-64 x 40-150 px around 30 x 85
+  (fractions 0.4-2.1 x 0.47-1.76); on the KDE output of PETS09-S2L1 the fitted prior raised the
+  first 300 frames' calibrated MOTA from 0.25 (40 x 100 px) to 0.35.
+- size_from_foreground for the re-clustering SIR (PETS09 frames 1-397, calibrated MOTA / IDF1,
+  mean of seeds 0-2, before the count-median statistic): 0.85 0.179 / 0.412, 0.94 0.395 / 0.430,
+  1.0 0.446 / 0.452, 1.06 0.491 / 0.411, 1.15 0.476 / 0.430.
+- Box calibration, medians of the fits (median GT / estimate ratios and offsets of tracks matched
+  to the MOT15 GT, IoU > 0.3; benchmarks/_foreground.py fit_calibration) on PETS09-S2L1 frames
+  1-397 with the other defaults, tracker seeds 0-2: MB (1.757, 1.465, -0.01, -0.01), (1.746,
+  1.490, -0.01, -0.01), (1.756, 1.444, -0.01, -0.01); SIR (0.978, 0.965, 0.003, 0.031), (0.967,
+  0.960, 0.000, 0.030), (0.981, 0.962, -0.002, 0.032).
 """
 
 from __future__ import annotations

@@ -108,6 +108,14 @@ cv::Mat depth_image(const py::handle& obj, const char* name, py::array& keep) {
   return image;
 }
 
+cv::Mat float32_image(const py::handle& obj, const char* name, py::array& keep) {
+  cv::Mat image = gray_image(obj, name, keep);
+  if (image.type() != CV_32FC1) {
+    throw py::type_error(std::string(name) + " must have dtype float32, got " + dtype_name(keep));
+  }
+  return image;
+}
+
 std::function<void(long long, long long)> progress_callback(const py::object& callback) {
   return [callback](long long done, long long total) {
     py::gil_scoped_acquire gil;

@@ -54,6 +54,10 @@ cv::Mat gray_image(const py::handle& obj, const char* name, py::array& keep);
 // (TypeError naming `name` for uint8: depth is in metres).
 cv::Mat depth_image(const py::handle& obj, const char* name, py::array& keep);
 
+// A background-subtracted image y (the filters' input): as gray_image, but float32 only
+// (TypeError naming `name` otherwise; the filters read it as float without conversion).
+cv::Mat float32_image(const py::handle& obj, const char* name, py::array& keep);
+
 // `rng` may be a vtrack.Rng (used and advanced in place) or an int seed (a fresh Rng).
 core::Rng& rng_from(const py::handle& rng, core::Rng& storage);
 

@@ -205,11 +205,7 @@ counted, as a fraction of the image; aspect: a person's width / height.
           "observe",
           [](ForegroundSizeEstimator& e, const py::handle& y, const py::handle& threshold) {
             py::array keep;
-            const cv::Mat img = gray_image(y, "y", keep);
-            if (img.type() != CV_32FC1) {
-              throw py::type_error("y must have dtype float32, got " +
-                                   py::str(keep.dtype()).cast<std::string>());
-            }
+            const cv::Mat img = float32_image(y, "y", keep);
             const auto t = static_cast<float>(real_arg(threshold, "threshold"));
             ObjectGuard guard(&e);
             py::gil_scoped_release release;

@@ -51,11 +51,7 @@ the box calibration).
           "step",
           [](MultiBernoulliFilter& f, const py::handle& y) {
             py::array keep;
-            const cv::Mat img = gray_image(y, "y", keep);
-            if (img.type() != CV_32FC1) {
-              throw py::type_error("y must have dtype float32, got " +
-                                   py::str(keep.dtype()).cast<std::string>());
-            }
+            const cv::Mat img = float32_image(y, "y", keep);
             ObjectGuard guard(&f);
             py::gil_scoped_release release;
             return TrackSet{f.step(img)};

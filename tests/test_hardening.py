@@ -80,6 +80,26 @@ def test_a_stray_comma_is_a_syntax_error_not_a_hang(tmp_path):
     assert vtrack.load_config(config) == {"tracker": {"delta_f": 0.2, "delta_b": 0.001}}
 
 
+def step_from_two_threads(tracker, measurement, steps_each):
+    """Calls tracker.step(measurement) steps_each times from each of two threads at once; fails
+    the test with the first exception either thread raised."""
+    errors = []
+
+    def work():
+        try:
+            for _ in range(steps_each):
+                tracker.step(measurement)
+        except BaseException as e:  # noqa: BLE001 - reported below
+            errors.append(e)
+
+    threads = [threading.Thread(target=work) for _ in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert not errors, errors[0]
+
+
 def test_one_tracker_stepped_from_two_threads_is_serialised():
     # step() releases the GIL; two threads stepping one tracker crashed. Now the calls take
     # turns: 2 x 6 steps of the same frame from two threads give what 12 serial steps give.
@@ -89,21 +109,7 @@ def test_one_tracker_stepped_from_two_threads_is_serialised():
     for _ in range(12):
         expected = serial.step(y)
     shared = vtrack.MultiBernoulliTracker((160, 120), seed=4)
-    errors = []
-
-    def work():
-        try:
-            for _ in range(6):
-                shared.step(y)
-        except BaseException as e:  # noqa: BLE001 - reported below
-            errors.append(e)
-
-    threads = [threading.Thread(target=work) for _ in range(2)]
-    for t in threads:
-        t.start()
-    for t in threads:
-        t.join()
-    assert not errors
+    step_from_two_threads(shared, y, 6)
     assert shared.frame == 12
     got = shared.tracks
     np.testing.assert_array_equal(got.ids, expected.ids)
@@ -125,21 +131,9 @@ def test_one_smc_filter_stepped_from_two_threads_is_serialised():
     serial = make()
     for _ in range(40):
         serial.step(z)
-    shared, errors = make(), []
-
-    def work():
-        try:
-            for _ in range(20):
-                shared.step(z)
-        except BaseException as e:  # noqa: BLE001 - reported below
-            errors.append(e)
-
-    threads = [threading.Thread(target=work) for _ in range(2)]
-    for t in threads:
-        t.start()
-    for t in threads:
-        t.join()
-    assert not errors and shared.steps == 40
+    shared = make()
+    step_from_two_threads(shared, z, 20)
+    assert shared.steps == 40
     np.testing.assert_array_equal(shared.particles, serial.particles)
 
 

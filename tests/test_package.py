@@ -109,7 +109,8 @@ def test_stub_signatures_match_the_compiled_ones(owner, name, node):
 COMPONENTS = [vtrack.KdeBackground, vtrack.MultiBernoulliTracker, vtrack.BoxTracker,
               vtrack.GlmbTracker, vtrack.HogPeopleDetector, vtrack.models.DepthLikelihood,
               vtrack.smc.ParticleFilter, vtrack.smc.MCMCParticleFilter,
-              vtrack.ColorParticleTracker, vtrack.PartParticleTracker]
+              vtrack.ColorParticleTracker, vtrack.PartParticleTracker,
+              vtrack.ReclusteringSirTracker, vtrack.vehicles.VehicleDimensionEstimator]
 
 
 def test_every_component_has_the_same_parameter_surface():

@@ -39,10 +39,10 @@ MultiBernoulliParams small_scene_params() {
   // random walk 1.5 px (positions) and 0.5 px (sizes), birth grid 4 px; eq. (20) as printed
   // (delta_B relative to the image).
   p.width_mean = 12;
-  p.height_mean = 30;
-  p.size_std = 0.22;
-  p.size_min = 0.5;
-  p.size_max = 1.8;
+  p.size.height_mean = 30;
+  p.size.size_std = 0.22;
+  p.size.size_min = 0.5;
+  p.size.size_max = 1.8;
   p.sigma_xy = 0.05;
   p.sigma_wh = 0.5 / 30;
   p.adaptive_birth_stride = 4.0 / 30;
@@ -53,8 +53,8 @@ MultiBernoulliParams small_scene_params() {
   p.management.confirm_frames = 1;
   p.management.lost_memory = 0;
   p.velocity_smoothing = 0.0;
-  p.box_scale_w = p.box_scale_h = 1.0;
-  p.box_offset_x = p.box_offset_y = 0.0;
+  p.box.box_scale_w = p.box.box_scale_h = 1.0;
+  p.box.box_offset_x = p.box.box_offset_y = 0.0;
   return p;
 }
 
@@ -113,8 +113,8 @@ TEST(MultiBernoulli, ExistenceRisesWithKnownRhoAboveOne) {
   MultiBernoulliParams p = small_scene_params();
   p.adaptive_birth = false;
   p.width_mean = 160;
-  p.height_mean = 120;
-  p.size_min = p.size_max = 1.0;
+  p.size.height_mean = 120;
+  p.size.size_min = p.size.size_max = 1.0;
   p.likelihood.delta_f = 0.5;
   p.likelihood.delta_b = 1e12;
   p.merge_overlap = 1.0;  // never merge: the four image-sized boxes overlap
@@ -258,9 +258,9 @@ TEST(MultiBernoulli, ConfirmationAndBoxTransformOnlyChangeTheOutput) {
   const MultiBernoulliParams paper = small_scene_params();
   MultiBernoulliParams p = paper;
   p.management.confirm_frames = 4;
-  p.box_scale_w = 1.5;
-  p.box_scale_h = 1.25;
-  p.box_offset_y = 0.1;
+  p.box.box_scale_w = 1.5;
+  p.box.box_scale_h = 1.25;
+  p.box.box_offset_y = 0.1;
   const auto a = run(paper), b = run(p);
   std::map<std::uint64_t, int> seen;
   int reported = 0;
@@ -340,12 +340,12 @@ TEST(MultiBernoulli, LearnsThePeopleSizeAcrossScales) {
   for (const int s : {3, 4}) {
     MultiBernoulliParams p;
     p.management.confirm_frames = 1;
-    p.box_scale_w = p.box_scale_h = 1.0;
-    p.box_offset_x = p.box_offset_y = 0.0;
+    p.box.box_scale_w = p.box.box_scale_h = 1.0;
+    p.box.box_offset_x = p.box.box_offset_y = 0.0;
     p.seed = 7;
     MultiBernoulliFilter f(160 * s, 120 * s, p);
     EXPECT_FALSE(f.size_prior().learnt);
-    EXPECT_NEAR(f.size_prior().height, p.size_initial * 120 * s, 1e-9);
+    EXPECT_NEAR(f.size_prior().height, p.size.size_initial * 120 * s, 1e-9);
     for (int k = 0; k < 25; ++k) {
       cv::Mat y(120 * s, 160 * s, CV_32F, cv::Scalar(0.95f));
       const cv::Rect person((40 + 2 * k) * s, 50 * s, 12 * s, 30 * s);
@@ -357,11 +357,11 @@ TEST(MultiBernoulli, LearnsThePeopleSizeAcrossScales) {
       EXPECT_NEAR(tracks[0].y + 0.5 * tracks[0].h, person.y + 15 * s, 2.0 * s);
     }
     EXPECT_TRUE(f.size_prior().learnt);
-    EXPECT_NEAR(f.size_prior().height, p.size_from_foreground * 30 * s, 0.03 * 30 * s);
-    EXPECT_NEAR(f.size_prior().width, p.size_aspect * f.size_prior().height, 1e-9);
+    EXPECT_NEAR(f.size_prior().height, p.size.size_from_foreground * 30 * s, 0.03 * 30 * s);
+    EXPECT_NEAR(f.size_prior().width, p.size.size_aspect * f.size_prior().height, 1e-9);
   }
   MultiBernoulliParams given;
-  given.height_mean = 50;
+  given.size.height_mean = 50;
   MultiBernoulliFilter f(160, 120, given);
   cv::Mat y(120, 160, CV_32F, cv::Scalar(0.95f));
   y(cv::Rect(40, 50, 12, 30)).setTo(0.1f);
@@ -387,20 +387,20 @@ TEST(MultiBernoulli, RejectsBadParametersNamingThem) {
   expect_error([](MultiBernoulliParams& p) { p.min_particles = 500; }, "min_particles");
   expect_error([](MultiBernoulliParams& p) { p.sigma_xy = 0.0; }, "sigma_xy");
   expect_error([](MultiBernoulliParams& p) { p.sigma_wh = -1.0; }, "sigma_wh");
-  expect_error([](MultiBernoulliParams& p) { p.height_mean = -1.0; }, "height_mean");
-  expect_error([](MultiBernoulliParams& p) { p.size_initial = 0.0; }, "size_initial");
-  expect_error([](MultiBernoulliParams& p) { p.size_half_life = -1.0; }, "size_half_life");
+  expect_error([](MultiBernoulliParams& p) { p.size.height_mean = -1.0; }, "height_mean");
+  expect_error([](MultiBernoulliParams& p) { p.size.size_initial = 0.0; }, "size_initial");
+  expect_error([](MultiBernoulliParams& p) { p.size.size_half_life = -1.0; }, "size_half_life");
   expect_error([](MultiBernoulliParams& p) { p.adaptive_birth_stride = 8.0; },
                "adaptive_birth_stride");
   expect_error([](MultiBernoulliParams& p) { p.likelihood.delta_f = 0.0; }, "delta_f");
-  expect_error([](MultiBernoulliParams& p) { p.size_max = 0.5; }, "size_max");
+  expect_error([](MultiBernoulliParams& p) { p.size.size_max = 0.5; }, "size_max");
   expect_error([](MultiBernoulliParams& p) { p.likelihood.closing_ratio = -0.1; }, "closing_ratio");
   expect_error([](MultiBernoulliParams& p) { p.management.confirm_frames = 0; }, "confirm_frames");
   expect_error([](MultiBernoulliParams& p) { p.management.lost_memory = -1; }, "lost_memory");
   expect_error([](MultiBernoulliParams& p) { p.management.relabel_overlap = 0.0; }, "relabel_overlap");
   expect_error([](MultiBernoulliParams& p) { p.velocity_smoothing = 1.5; }, "velocity_smoothing");
-  expect_error([](MultiBernoulliParams& p) { p.box_scale_w = 0.0; }, "box_scale_w");
-  expect_error([](MultiBernoulliParams& p) { p.box_offset_y = NAN; }, "box_offset_y");
+  expect_error([](MultiBernoulliParams& p) { p.box.box_scale_w = 0.0; }, "box_scale_w");
+  expect_error([](MultiBernoulliParams& p) { p.box.box_offset_y = NAN; }, "box_offset_y");
   MultiBernoulliParams ok;
   ok.survival_probability = 1.0;  // P_S = 1 is allowed
   EXPECT_NO_THROW(MultiBernoulliFilter(64, 48, ok));

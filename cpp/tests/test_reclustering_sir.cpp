@@ -32,12 +32,12 @@ cv::Mat scene(const std::vector<cv::Rect>& people, int w = 200, int h = 150) {
 ReclusteringSirParams small_params(std::uint64_t seed = 0) {
   ReclusteringSirParams p;
   p.n_particles = 100;  // the paper's budget for 1-4 objects (§2.2)
-  p.height_mean = 30;  // the scenes' people are 12 x 30 (size_aspect 0.4)
-  p.size_aspect = 0.4;
+  p.size.height_mean = 30;  // the scenes' people are 12 x 30 (size_aspect 0.4)
+  p.size.size_aspect = 0.4;
   p.management.confirm_frames = 1;  // the paper's output: every object's estimate
   p.management.lost_memory = 0;
-  p.box_scale_w = p.box_scale_h = 1.0;  // the scenes' truth is the blobs' box: no calibration
-  p.box_offset_x = p.box_offset_y = 0.0;
+  p.box.box_scale_w = p.box.box_scale_h = 1.0;  // the scenes' truth is the blobs' box: no calibration
+  p.box.box_offset_x = p.box.box_offset_y = 0.0;
   p.seed = seed;
   return p;
 }
@@ -247,7 +247,7 @@ TEST(ReclusteringSir, NoMotionForHundredsOfFramesThenPeople) {
   // No measurements: the §2.2 initialisation every frame (free particles, no object, no track),
   // never NaN; then people present from the first frame with motion are found.
   ReclusteringSirParams p = small_params(6);
-  p.height_mean = 0;  // learnt: nothing to learn from an empty scene, the initial guess stays
+  p.size.height_mean = 0;  // learnt: nothing to learn from an empty scene, the initial guess stays
   ReclusteringSir f(200, 150, p);
   for (int k = 0; k < 300; ++k) {
     EXPECT_TRUE(f.step(scene({})).empty());
@@ -295,9 +295,9 @@ TEST(ReclusteringSir, RejectsBadParametersAndImagesNamingThem) {
   rejects([](ReclusteringSirParams& p) { p.rho = 0; }, "rho");
   rejects([](ReclusteringSirParams& p) { p.rho = -1; }, "rho");
   rejects([](ReclusteringSirParams& p) { p.rho = std::nan(""); }, "rho");
-  rejects([](ReclusteringSirParams& p) { p.size_min = 0; }, "size_min");
-  rejects([](ReclusteringSirParams& p) { p.size_aspect = -1; }, "size_aspect");
-  rejects([](ReclusteringSirParams& p) { p.height_mean = -5; }, "height_mean");
+  rejects([](ReclusteringSirParams& p) { p.size.size_min = 0; }, "size_min");
+  rejects([](ReclusteringSirParams& p) { p.size.size_aspect = -1; }, "size_aspect");
+  rejects([](ReclusteringSirParams& p) { p.size.height_mean = -5; }, "height_mean");
   rejects([](ReclusteringSirParams& p) { p.grid_step = 0; }, "grid_step");
   rejects([](ReclusteringSirParams& p) { p.gate = 0; }, "gate");
   rejects([](ReclusteringSirParams& p) { p.budget_objects = 0; }, "budget_objects");

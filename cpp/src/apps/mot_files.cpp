@@ -1,6 +1,5 @@
 #include "vtrack/apps/mot_files.hpp"
 
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -12,30 +11,10 @@
 #include "vtrack/core/errors.hpp"
 #include "vtrack/core/interrupt.hpp"
 #include "vtrack/core/limits.hpp"
+#include "vtrack/core/text_file.hpp"
 
 namespace vtrack::apps {
 namespace {
-
-// Trims spaces and tabs (MOT files written by other tools sometimes pad the fields).
-std::string trimmed(const std::string& s) {
-  const auto first = s.find_first_not_of(" \t\r");
-  if (first == std::string::npos) return {};
-  const auto last = s.find_last_not_of(" \t\r");
-  return s.substr(first, last - first + 1);
-}
-
-// The whole field must be a number (strtod accepts "nan" and "inf"; those are caught later with
-// the field's name).
-double parse_field(const std::string& field, const char* name, const std::string& where) {
-  const std::string text = trimmed(field);
-  char* end = nullptr;
-  errno = 0;
-  const double v = text.empty() ? 0.0 : std::strtod(text.c_str(), &end);
-  if (text.empty() || end != text.c_str() + text.size()) {
-    throw InvalidArgument(where + name + " is not a number: '" + text + "'");
-  }
-  return v;
-}
 
 // A formatted row must fit its buffer whole: a cut row would silently merge with the next.
 void check_line(int written, std::size_t size, long long frame) {
@@ -89,25 +68,18 @@ std::vector<Detection> read_detections(const std::string& path, double min_confi
   long long number = 0;
   while (std::getline(in, line)) {
     if ((++number & 4095) == 0) core::poll_interrupt();  // files may hold millions of rows
-    if (trimmed(line).empty()) continue;
+    if (core::trimmed(line).empty()) continue;
     const std::string where = path + ":" + std::to_string(number) + ": ";
-    std::vector<std::string> fields;
-    std::size_t start = 0;
-    while (true) {
-      const std::size_t comma = line.find(',', start);
-      fields.push_back(line.substr(start, comma - start));
-      if (comma == std::string::npos) break;
-      start = comma + 1;
-    }
+    const std::vector<std::string> fields = core::comma_fields(line);
     if (fields.size() < 6 || fields.size() > 10) {
       throw InvalidArgument(where + "expected 6 to 10 comma-separated fields "
                             "(frame,id,x,y,w,h[,conf,...]), got " + std::to_string(fields.size()));
     }
     double v[10];
-    for (std::size_t i = 0; i < fields.size(); ++i) v[i] = parse_field(fields[i], names[i], where);
+    for (std::size_t i = 0; i < fields.size(); ++i) v[i] = core::number_field(fields[i], names[i], where);
     if (!(std::isfinite(v[0]) && v[0] == std::floor(v[0]) &&
           std::fabs(v[0]) <= static_cast<double>(core::kMaxFrame))) {
-      throw InvalidArgument(where + "frame must be an integer, got '" + trimmed(fields[0]) + "'");
+      throw InvalidArgument(where + "frame must be an integer, got '" + core::trimmed(fields[0]) + "'");
     }
     Detection d{static_cast<long long>(v[0]), v[2], v[3], v[4], v[5],
                 fields.size() > 6 ? v[6] : 1.0};

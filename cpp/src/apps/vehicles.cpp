@@ -1,7 +1,6 @@
 #include "vtrack/apps/vehicles.hpp"
 
 #include <algorithm>
-#include <cerrno>
 #include <climits>
 #include <cmath>
 #include <cstdio>
@@ -19,25 +18,15 @@
 #include "vtrack/core/errors.hpp"
 #include "vtrack/core/interrupt.hpp"
 #include "vtrack/core/limits.hpp"
+#include "vtrack/core/text_file.hpp"
 
 namespace vtrack::apps {
 namespace {
 
-std::string trimmed(const std::string& s) {
-  const auto first = s.find_first_not_of(" \t\r");
-  if (first == std::string::npos) return {};
-  const auto last = s.find_last_not_of(" \t\r");
-  return s.substr(first, last - first + 1);
-}
-
+// The whole field as a finite number.
 double number(const std::string& field, const std::string& name, const std::string& where) {
-  const std::string text = trimmed(field);
-  char* end = nullptr;
-  const double v = text.empty() ? 0.0 : std::strtod(text.c_str(), &end);
-  if (text.empty() || end != text.c_str() + text.size()) {
-    throw InvalidArgument(where + name + " is not a number: '" + text + "'");
-  }
-  if (!std::isfinite(v)) throw InvalidArgument(where + name + " must be finite, got " + text);
+  const double v = core::number_field(field, name, where);
+  if (!std::isfinite(v)) throw InvalidArgument(where + name + " must be finite, got " + core::trimmed(field));
   return v;
 }
 
@@ -45,19 +34,13 @@ int whole(const std::string& field, const char* name, const std::string& where, 
   const double v = number(field, name, where);
   if (v != std::floor(v) || v < lowest || v > INT_MAX) {
     throw InvalidArgument(where + name + " must be an integer >= " + std::to_string(lowest) + ", got '" +
-                          trimmed(field) + "'");
+                          core::trimmed(field) + "'");
   }
   return static_cast<int>(v);
 }
 
 VehicleSilhouette parse_line(const std::string& line, const std::string& where) {
-  std::vector<std::string> fields;
-  for (std::size_t start = 0;;) {
-    const std::size_t comma = line.find(',', start);
-    fields.push_back(line.substr(start, comma - start));
-    if (comma == std::string::npos) break;
-    start = comma + 1;
-  }
+  const std::vector<std::string> fields = core::comma_fields(line);
   const std::size_t n = fields.size();
   if (n < 6 || n % 2 != 0) {
     throw InvalidArgument(where + "expected frame,vehicle_id,x,y,w,h or frame,vehicle_id,x1,y1,...,xn,yn "
@@ -73,13 +56,13 @@ VehicleSilhouette parse_line(const std::string& line, const std::string& where) 
                                       : (i % 2 == 0 ? "x" : "y") + std::to_string((i - 2) / 2 + 1);
     const double v = number(fields[i], name, where);
     if (std::fabs(v) > core::kMaxCoordinate) {
-      throw InvalidArgument(where + name + " must be within +-1e9 pixels, got " + trimmed(fields[i]));
+      throw InvalidArgument(where + name + " must be within +-1e9 pixels, got " + core::trimmed(fields[i]));
     }
     s.points(static_cast<Eigen::Index>(i % 2), static_cast<Eigen::Index>((i - 2) / 2)) = v;
   }
   if (s.is_box && !(s.points(0, 1) > 0.0 && s.points(1, 1) > 0.0)) {
-    throw InvalidArgument(where + "the box's w and h must be > 0, got " + trimmed(fields[4]) + ", " +
-                          trimmed(fields[5]));
+    throw InvalidArgument(where + "the box's w and h must be > 0, got " + core::trimmed(fields[4]) + ", " +
+                          core::trimmed(fields[5]));
   }
   return s;
 }
@@ -113,7 +96,7 @@ std::vector<VehicleSilhouette> read_vehicle_observations(const std::string& path
   long long number_of_line = 0;
   while (std::getline(in, line)) {
     if ((++number_of_line & 4095) == 0) core::poll_interrupt();
-    const std::string text = trimmed(line);
+    const std::string text = core::trimmed(line);
     if (text.empty() || text[0] == '#') continue;
     if (number_of_line == 1 && text.rfind("frame", 0) == 0) continue;  // a header
     out.push_back(parse_line(text, path + ":" + std::to_string(number_of_line) + ": "));

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "vtrack/core/errors.hpp"
+#include "vtrack/core/text_file.hpp"
 
 namespace vtrack::core {
 namespace {
@@ -110,14 +111,10 @@ ParameterValue parse_parameter_text(const std::string& text) {
   if (parse_real(text, real)) return real;
   if (text.find(',') != std::string::npos) {
     std::vector<double> reals;
-    std::size_t start = 0;
-    while (true) {
-      const std::size_t comma = text.find(',', start);
+    for (const std::string& field : comma_fields(text)) {
       double v = 0;
-      if (!parse_real(text.substr(start, comma - start), v)) return text;
+      if (!parse_real(field, v)) return text;
       reals.push_back(v);
-      if (comma == std::string::npos) break;
-      start = comma + 1;
     }
     return reals;
   }

@@ -1,6 +1,7 @@
 #include "vtrack/core/text_file.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -136,6 +137,33 @@ std::string read_text_file(const std::string& path, const std::string& what,
                   std::to_string(max_flow_nesting) + " levels");
   }
   return text;
+}
+
+std::string trimmed(const std::string& s) {
+  const auto first = s.find_first_not_of(" \t\r");
+  if (first == std::string::npos) return {};
+  const auto last = s.find_last_not_of(" \t\r");
+  return s.substr(first, last - first + 1);
+}
+
+std::vector<std::string> comma_fields(const std::string& line) {
+  std::vector<std::string> fields;
+  for (std::size_t start = 0;;) {
+    const std::size_t comma = line.find(',', start);
+    fields.push_back(line.substr(start, comma - start));
+    if (comma == std::string::npos) return fields;
+    start = comma + 1;
+  }
+}
+
+double number_field(const std::string& field, const std::string& name, const std::string& where) {
+  const std::string text = trimmed(field);
+  char* end = nullptr;
+  const double v = text.empty() ? 0.0 : std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size()) {
+    throw InvalidArgument(where + name + " is not a number: '" + text + "'");
+  }
+  return v;
 }
 
 }  // namespace vtrack::core

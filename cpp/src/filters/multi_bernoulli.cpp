@@ -15,10 +15,6 @@
 namespace vtrack::filters {
 namespace {
 
-void require_positive(const char* name, double v) {
-  require(std::isfinite(v) && v > 0.0, name, v, "a positive finite number");
-}
-
 void require_probability(const char* name, double v) {
   require(v >= 0.0 && v <= 1.0, name, v, "in [0, 1]");
 }
@@ -42,15 +38,8 @@ const core::ParameterTable<MultiBernoulliParams>& MultiBernoulliParams::table() 
       core::ParameterTable<P>()
           .include(&P::likelihood)
           .add("survival_probability", &P::survival_probability)
-          .add("height_mean", &P::height_mean)
+          .include(&P::size)
           .add("width_mean", &P::width_mean)
-          .add("size_aspect", &P::size_aspect)
-          .add("size_from_foreground", &P::size_from_foreground)
-          .add("size_initial", &P::size_initial)
-          .add("size_half_life", &P::size_half_life)
-          .add("size_std", &P::size_std)
-          .add("size_min", &P::size_min)
-          .add("size_max", &P::size_max)
           .add("sigma_xy", &P::sigma_xy)
           .add("sigma_wh", &P::sigma_wh)
           .add("quarter_birth", &P::quarter_birth)
@@ -72,10 +61,7 @@ const core::ParameterTable<MultiBernoulliParams>& MultiBernoulliParams::table() 
           .add("max_existence", &P::max_existence)
           .include(&P::management)
           .add("velocity_smoothing", &P::velocity_smoothing)
-          .add("box_scale_w", &P::box_scale_w)
-          .add("box_scale_h", &P::box_scale_h)
-          .add("box_offset_x", &P::box_offset_x)
-          .add("box_offset_y", &P::box_offset_y)
+          .include(&P::box)
           .add("seed", &P::seed);
   return table;
 }
@@ -84,20 +70,9 @@ void validate(const MultiBernoulliParams& p) {
   models::validate(p.likelihood);
   require(p.survival_probability > 0.0 && p.survival_probability <= 1.0, "survival_probability",
           p.survival_probability, "in (0, 1]");
-  require(std::isfinite(p.height_mean) && p.height_mean >= 0.0, "height_mean", p.height_mean,
-          ">= 0 (0: learnt)");
+  validate(p.size);
   require(std::isfinite(p.width_mean) && p.width_mean >= 0.0, "width_mean", p.width_mean,
           ">= 0 (0: size_aspect x height)");
-  require_positive("size_aspect", p.size_aspect);
-  require_positive("size_from_foreground", p.size_from_foreground);
-  require(p.size_initial > 0.0 && p.size_initial <= 1.0, "size_initial", p.size_initial,
-          "in (0, 1]");
-  require(std::isfinite(p.size_half_life) && p.size_half_life >= 0.0, "size_half_life",
-          p.size_half_life, ">= 0 (0: never forget)");
-  require(std::isfinite(p.size_std) && p.size_std >= 0.0, "size_std", p.size_std, ">= 0");
-  require(p.size_min > 0.0 && p.size_min <= 1.0, "size_min", p.size_min, "in (0, 1]");
-  require(std::isfinite(p.size_max) && p.size_max >= 1.0, "size_max", p.size_max,
-          ">= 1 and finite");
   require(p.sigma_xy > 0.0 && p.sigma_xy <= 1.0, "sigma_xy", p.sigma_xy, "in (0, 1]");
   require(p.sigma_wh > 0.0 && p.sigma_wh <= 1.0, "sigma_wh", p.sigma_wh, "in (0, 1]");
   require(p.birth_probability > 0.0 && p.birth_probability < 1.0, "birth_probability",
@@ -130,10 +105,7 @@ void validate(const MultiBernoulliParams& p) {
           "in (0, 1]");
   validate(p.management);
   require_probability("velocity_smoothing", p.velocity_smoothing);
-  require_positive("box_scale_w", p.box_scale_w);
-  require_positive("box_scale_h", p.box_scale_h);
-  require(std::isfinite(p.box_offset_x), "box_offset_x", p.box_offset_x, "finite");
-  require(std::isfinite(p.box_offset_y), "box_offset_y", p.box_offset_y, "finite");
+  validate(p.box);
 }
 
 Eigen::Vector4f BernoulliComponent::mean() const {
@@ -159,14 +131,14 @@ double updated_existence(double r, double log_rho) {
 PersonSizePrior person_size_prior(const MultiBernoulliParams& p, double width, double height) {
   PersonSizePrior s;
   s.height = height;
-  s.width = width > 0.0 ? width : p.size_aspect * height;
-  s.width_std = p.size_std * s.width;
-  s.height_std = p.size_std * s.height;
+  s.width = width > 0.0 ? width : p.size.size_aspect * height;
+  s.width_std = p.size.size_std * s.width;
+  s.height_std = p.size.size_std * s.height;
   // Sizes of at least one pixel, whatever the scale.
-  s.width_min = std::max(1.0, p.size_min * s.width);
-  s.height_min = std::max(1.0, p.size_min * s.height);
-  s.width_max = std::max(s.width_min, p.size_max * s.width);
-  s.height_max = std::max(s.height_min, p.size_max * s.height);
+  s.width_min = std::max(1.0, p.size.size_min * s.width);
+  s.height_min = std::max(1.0, p.size.size_min * s.height);
+  s.width_max = std::max(s.width_min, p.size.size_max * s.width);
+  s.height_max = std::max(s.height_min, p.size.size_max * s.height);
   s.sigma_xy = p.sigma_xy * s.height;
   s.sigma_wh = p.sigma_wh * s.height;
   s.birth_stride = std::max(1, static_cast<int>(std::lround(p.adaptive_birth_stride * s.height)));
@@ -177,14 +149,11 @@ MultiBernoulliFilter::MultiBernoulliFilter(int width, int height,
                                            const MultiBernoulliParams& params)
     : params_(validated(params)), width_(width), height_(height), rng_(params.seed),
       likelihood_(params.likelihood),
-      size_estimator_(params.size_half_life > 0.0 ? params.size_half_life
-                                                  : std::numeric_limits<double>::infinity(),
-                      1e-4, params.size_aspect),
+      person_height_(params.size, height),
       management_(params.management) {
   if (width < 1) throw InvalidArgument("width must be >= 1, got " + std::to_string(width));
   if (height < 1) throw InvalidArgument("height must be >= 1, got " + std::to_string(height));
-  const double h = params_.height_mean > 0.0 ? params_.height_mean : params_.size_initial * height;
-  set_size_prior(person_size_prior(params_, params_.width_mean, h));
+  set_size_prior(person_size_prior(params_, params_.width_mean, person_height_.height()));
 }
 
 void MultiBernoulliFilter::set_size_prior(const PersonSizePrior& size) {
@@ -196,15 +165,12 @@ void MultiBernoulliFilter::set_size_prior(const PersonSizePrior& size) {
 }
 
 void MultiBernoulliFilter::update_size_prior() {
-  if (params_.height_mean > 0.0) return;  // given in pixels
-  // The closed y the likelihood sees: the components are those the filter's boxes explain.
-  size_estimator_.observe(likelihood_.processed_image());
-  // Evidence: components adding up to one person of the current prior (the first frames of a
-  // video with people in view; a scene without motion keeps the initial guess).
-  if (!size_.learnt && size_estimator_.weight() < size_.width * size_.height) return;
-  const double h = params_.size_from_foreground * size_estimator_.person_height();
-  if (!(h > 0.0)) return;
-  PersonSizePrior size = person_size_prior(params_, params_.width_mean, h);
+  // The closed y the likelihood sees: the components are those the filter's boxes explain. The
+  // evidence needed is one person of the current prior.
+  if (!person_height_.observe(likelihood_.processed_image(), 0.5f, size_.width * size_.height)) {
+    return;
+  }
+  PersonSizePrior size = person_size_prior(params_, params_.width_mean, person_height_.height());
   size.learnt = true;
   set_size_prior(size);
 }
@@ -263,17 +229,9 @@ void MultiBernoulliFilter::manage_tracks() {
       relabelled = true;
     }
     if (!management_.report(c.record, m)) continue;
-    // Reported box: scaled about the centre, centre shifted (box_scale_*, box_offset_*).
-    const float w = m[2] * float(params_.box_scale_w);
-    const float h = m[3] * float(params_.box_scale_h);
-    const float cx = m[0] + 0.5f * m[2] + float(params_.box_offset_x) * m[2];
-    const float cy = m[1] + 0.5f * m[3] + float(params_.box_offset_y) * m[3];
     TrackEstimate t;
     t.id = c.label;
-    t.x = cx - 0.5f * w;
-    t.y = cy - 0.5f * h;
-    t.w = w;
-    t.h = h;
+    set_calibrated_box(params_.box, m[0] + 0.5 * m[2], m[1] + 0.5 * m[3], m[2], m[3], t);
     t.score = c.existence;
     t.state = m.cast<double>();
     tracks_.push_back(std::move(t));

@@ -16,10 +16,6 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kPi = 3.14159265358979323846;
 
-void require_positive(const char* name, double v) {
-  require(std::isfinite(v) && v > 0.0, name, v, "a positive finite number");
-}
-
 const ReclusteringSirParams& validated(const ReclusteringSirParams& p) {
   validate(p);
   return p;
@@ -68,21 +64,12 @@ const core::ParameterTable<ReclusteringSirParams>& ReclusteringSirParams::table(
           .add("merge_distance", &P::merge_distance)
           .add("merge_size", &P::merge_size)
           .add("max_misses", &P::max_misses)
-          .add("height_mean", &P::height_mean)
-          .add("size_aspect", &P::size_aspect)
-          .add("size_from_foreground", &P::size_from_foreground)
-          .add("size_initial", &P::size_initial)
-          .add("size_min", &P::size_min)
-          .add("size_max", &P::size_max)
-          .add("size_std", &P::size_std)
+          .include(&P::size)
           .add("sigma_xy", &P::sigma_xy)
           .add("sigma_velocity", &P::sigma_velocity)
           .add("sigma_wh", &P::sigma_wh)
           .include(&P::management)
-          .add("box_scale_w", &P::box_scale_w)
-          .add("box_scale_h", &P::box_scale_h)
-          .add("box_offset_x", &P::box_offset_x)
-          .add("box_offset_y", &P::box_offset_y)
+          .include(&P::box)
           .add("seed", &P::seed);
   return table;
 }
@@ -112,25 +99,13 @@ void validate(const ReclusteringSirParams& p) {
   require(std::isfinite(p.merge_size) && p.merge_size >= 0.0, "merge_size", p.merge_size,
           ">= 0 and finite");
   require(p.max_misses >= 1, "max_misses", p.max_misses, ">= 1");
-  require(std::isfinite(p.height_mean) && p.height_mean >= 0.0, "height_mean", p.height_mean,
-          ">= 0 (0: learnt)");
-  require_positive("size_aspect", p.size_aspect);
-  require_positive("size_from_foreground", p.size_from_foreground);
-  require(p.size_initial > 0.0 && p.size_initial <= 1.0, "size_initial", p.size_initial,
-          "in (0, 1]");
-  require(p.size_min > 0.0 && p.size_min <= 1.0, "size_min", p.size_min, "in (0, 1]");
-  require(std::isfinite(p.size_max) && p.size_max >= 1.0, "size_max", p.size_max,
-          ">= 1 and finite");
-  require(std::isfinite(p.size_std) && p.size_std >= 0.0, "size_std", p.size_std, ">= 0");
+  validate(p.size);
   require(p.sigma_xy >= 0.0 && p.sigma_xy <= 1.0, "sigma_xy", p.sigma_xy, "in [0, 1]");
   require(p.sigma_velocity >= 0.0 && p.sigma_velocity <= 1.0, "sigma_velocity",
           p.sigma_velocity, "in [0, 1]");
   require(p.sigma_wh >= 0.0 && p.sigma_wh <= 1.0, "sigma_wh", p.sigma_wh, "in [0, 1]");
   validate(p.management);
-  require_positive("box_scale_w", p.box_scale_w);
-  require_positive("box_scale_h", p.box_scale_h);
-  require(std::isfinite(p.box_offset_x), "box_offset_x", p.box_offset_x, "finite");
-  require(std::isfinite(p.box_offset_y), "box_offset_y", p.box_offset_y, "finite");
+  validate(p.box);
 }
 
 Eigen::Matrix2Xf grid_measurements(const cv::Mat& y, float threshold, int step) {
@@ -184,12 +159,11 @@ double ellipse_log_likelihood(float cx, float cy, float a, float b,
 
 ReclusteringSir::ReclusteringSir(int width, int height, const ReclusteringSirParams& params)
     : params_(validated(params)), width_(width), height_(height), rng_(params.seed),
-      size_estimator_(std::numeric_limits<double>::infinity(), 1e-4, params.size_aspect),
+      person_height_(params.size, height),
       motion_(make_motion(0, 0, 0)), management_(params.management) {
   if (width < 1) throw InvalidArgument("width must be >= 1, got " + std::to_string(width));
   if (height < 1) throw InvalidArgument("height must be >= 1, got " + std::to_string(height));
-  set_person_height(params_.height_mean > 0.0 ? params_.height_mean
-                                              : params_.size_initial * height);
+  set_person_height(person_height_.height());
   initialise();
 }
 
@@ -203,14 +177,14 @@ void ReclusteringSir::set_person_height(double h) {
 float ReclusteringSir::gate_d2(const Object& o, float x, float y) const {
   // The estimate's axes, but never below the person size's: an ellipse that has shrunk onto part
   // of a person still gathers the whole person's pixels, the evidence it needs to grow back.
-  const float a = std::max(o.estimate[4], float(0.5 * params_.size_aspect * person_h_));
+  const float a = std::max(o.estimate[4], float(0.5 * params_.size.size_aspect * person_h_));
   const float b = std::max(o.estimate[5], float(0.5 * person_h_));
   const float dx = (x - o.estimate[0]) / a, dy = (y - o.estimate[1]) / b;
   return dx * dx + dy * dy;
 }
 
 double ReclusteringSir::expected_points() const {
-  const double hw = 0.5 * params_.size_aspect * person_h_, hh = 0.5 * person_h_;
+  const double hw = 0.5 * params_.size.size_aspect * person_h_, hh = 0.5 * person_h_;
   return kPi * hw * hh / (double(grid_) * grid_);
 }
 
@@ -218,7 +192,7 @@ void ReclusteringSir::initialise() {
   // §2.2: centres uniform over the image, velocities around zero, axes uniform in the expected
   // size range; no object owns them (cluster 0).
   const int n = params_.n_particles;
-  const double hw = 0.5 * params_.size_aspect * person_h_, hh = 0.5 * person_h_;
+  const double hw = 0.5 * params_.size.size_aspect * person_h_, hh = 0.5 * person_h_;
   const double sv = params_.sigma_velocity * person_h_;
   Particles::States x(n, 6);
   for (int i = 0; i < n; ++i) {
@@ -226,8 +200,8 @@ void ReclusteringSir::initialise() {
     x(i, 1) = float(rng_.uniform(0.0, height_));
     x(i, 2) = float(sv * rng_.normal());
     x(i, 3) = float(sv * rng_.normal());
-    x(i, 4) = float(rng_.uniform(params_.size_min * hw, params_.size_max * hw));
-    x(i, 5) = float(rng_.uniform(params_.size_min * hh, params_.size_max * hh));
+    x(i, 4) = float(rng_.uniform(params_.size.size_min * hw, params_.size.size_max * hw));
+    x(i, 5) = float(rng_.uniform(params_.size.size_min * hh, params_.size.size_max * hh));
   }
   particles_ = Particles(std::move(x));
   clusters_.assign(std::size_t(n), 0);
@@ -261,16 +235,9 @@ const Tracks& ReclusteringSir::step(const cv::Mat& y) {
     resample();
   }
   // The person size learnt from this frame's foreground applies from the next frame on.
-  if (params_.height_mean == 0.0) {
-    size_estimator_.observe(y, float(params_.foreground_threshold));
-    const double area = params_.size_aspect * person_h_ * person_h_;
-    if (size_learnt_ || size_estimator_.weight() >= area) {
-      const double h = params_.size_from_foreground * size_estimator_.person_height();
-      if (h > 0.0) {
-        size_learnt_ = true;
-        set_person_height(h);
-      }
-    }
+  const double area = params_.size.size_aspect * person_h_ * person_h_;
+  if (person_height_.observe(y, float(params_.foreground_threshold), area)) {
+    set_person_height(person_height_.height());
   }
   ++frame_;
   return tracks_;
@@ -284,10 +251,10 @@ void ReclusteringSir::predict() {
   motion_.propagate(models::StatesView<float>(particles_.states()),
                     models::StatesView<float>(eps_), models::MutableStatesView<float>(next_));
   std::swap(particles_.states(), next_);
-  const float hw = float(0.5 * params_.size_aspect * person_h_), hh = float(0.5 * person_h_);
+  const float hw = float(0.5 * params_.size.size_aspect * person_h_), hh = float(0.5 * person_h_);
   auto& x = particles_.states();
-  x.col(4) = x.col(4).cwiseMax(float(params_.size_min) * hw).cwiseMin(float(params_.size_max) * hw);
-  x.col(5) = x.col(5).cwiseMax(float(params_.size_min) * hh).cwiseMin(float(params_.size_max) * hh);
+  x.col(4) = x.col(4).cwiseMax(float(params_.size.size_min) * hw).cwiseMin(float(params_.size.size_max) * hw);
+  x.col(5) = x.col(5).cwiseMax(float(params_.size.size_min) * hh).cwiseMin(float(params_.size.size_max) * hh);
 }
 
 void ReclusteringSir::associate() {
@@ -310,7 +277,7 @@ void ReclusteringSir::associate() {
 void ReclusteringSir::weigh() {
   const Eigen::Index n = particles_.size();
   const auto& x = particles_.states();
-  const float sx = float(params_.novelty_sigma * 0.5 * params_.size_aspect * person_h_);
+  const float sx = float(params_.novelty_sigma * 0.5 * params_.size.size_aspect * person_h_);
   const float sy = float(params_.novelty_sigma * 0.5 * person_h_);
   Eigen::VectorXd log_lik(n);
   for (Eigen::Index i = 0; i < n; ++i) {
@@ -384,7 +351,7 @@ void ReclusteringSir::update_estimates() {
 void ReclusteringSir::novel_measurements(std::vector<int>& novel,
                                          std::vector<double>& novelty) const {
   // The novelty distribution n(z_j) = prod_m (1 - h(z_j | xhat_m)) over the objects' estimates.
-  const float sx = float(params_.novelty_sigma * 0.5 * params_.size_aspect * person_h_);
+  const float sx = float(params_.novelty_sigma * 0.5 * params_.size.size_aspect * person_h_);
   const float sy = float(params_.novelty_sigma * 0.5 * person_h_);
   novel.clear();
   novelty.clear();
@@ -404,7 +371,7 @@ void ReclusteringSir::novel_measurements(std::vector<int>& novel,
 Eigen::Vector2f ReclusteringSir::novel_centroid(const std::vector<int>& novel,
                                                 Eigen::Vector2f centre) const {
   // Two mean-shift steps: the centroid of the novel measurements within a person's ellipse.
-  const double hw = 0.5 * params_.size_aspect * person_h_, hh = 0.5 * person_h_;
+  const double hw = 0.5 * params_.size.size_aspect * person_h_, hh = 0.5 * person_h_;
   for (int it = 0; it < 2; ++it) {
     Eigen::Vector2d sum = Eigen::Vector2d::Zero();
     int count = 0;
@@ -432,110 +399,135 @@ int ReclusteringSir::nearest_gate(float x, float y) const {
   return k_best + 1;
 }
 
+int ReclusteringSir::found_object(const State& s, const std::vector<int>& novel,
+                                  double min_points) {
+  int inside = 0;
+  for (const int j : novel) inside += ellipse_d2(s, z_(0, j), z_(1, j)) <= 1.0f ? 1 : 0;
+  if (double(inside) < min_points) return -1;
+  Object o;
+  o.label = next_label_++;
+  o.birth_frame = frame_;
+  o.estimate = s;
+  objects_.push_back(o);
+  return int(objects_.size());
+}
+
+void ReclusteringSir::place_best_free(const Particles::States& x, const Eigen::VectorXd& lw,
+                                      const std::vector<int>& novel, double min_points) {
+  Eigen::Index best = -1;
+  for (Eigen::Index i = 0; i < x.rows(); ++i) {
+    if (clusters_[std::size_t(i)] == 0 && (best < 0 || lw[i] > lw[best])) best = i;
+  }
+  if (best < 0) return;
+  const State s = x.row(best).transpose();
+  const int gate = nearest_gate(s[0], s[1]);
+  const int c = gate > 0 ? gate : found_object(s, novel, min_points);
+  if (c > 0) clusters_[std::size_t(best)] = c;
+}
+
+ReclusteringSir::State ReclusteringSir::injection_state(const Eigen::Vector2f& centre) {
+  const double hw = 0.5 * params_.size.size_aspect * person_h_, hh = 0.5 * person_h_;
+  const double sxy = params_.sigma_xy * person_h_, sv = params_.sigma_velocity * person_h_;
+  const auto axis = [&](double prior) {
+    return float(std::clamp(prior * (1.0 + params_.size.size_std * rng_.normal()),
+                            params_.size.size_min * prior, params_.size.size_max * prior));
+  };
+  State s;  // drawn in this order: the same seed gives the same particles
+  s[0] = float(centre[0] + sxy * rng_.normal());
+  s[1] = float(centre[1] + sxy * rng_.normal());
+  s[2] = float(sv * rng_.normal());
+  s[3] = float(sv * rng_.normal());
+  s[4] = axis(hw);
+  s[5] = axis(hh);
+  return s;
+}
+
+namespace {
+
+// The particles injections replace (Fig. 1): free particles first, then the lowest weighted,
+// never an object's last one; at most `limit` of them.
+class InjectionSlots {
+ public:
+  InjectionSlots(const std::vector<int>& clusters, const Eigen::VectorXd& lw,
+                 std::size_t n_objects, std::size_t limit)
+      : order_(lw.size()), counts_(n_objects + 1, 0), limit_(limit) {
+    std::iota(order_.begin(), order_.end(), Eigen::Index(0));
+    std::stable_sort(order_.begin(), order_.end(), [&](Eigen::Index a, Eigen::Index b) {
+      const bool fa = clusters[std::size_t(a)] == 0, fb = clusters[std::size_t(b)] == 0;
+      return fa != fb ? fa : lw[a] < lw[b];
+    });
+    for (const int c : clusters) ++counts_[std::size_t(c)];
+  }
+
+  // Puts state s into the next slot, in cluster c (of n_objects), with weight 1 / N; false when
+  // no slot is left.
+  template <class State, class States>
+  bool take(const State& s, int c, std::size_t n_objects, std::vector<int>& clusters, States& x,
+            Eigen::VectorXd& lw) {
+    while (next_ < order_.size()) {
+      const auto ci = std::size_t(clusters[std::size_t(order_[next_])]);
+      if (ci == 0 || counts_[ci] > 1) break;
+      ++next_;
+    }
+    if (next_ == order_.size() || taken_ == limit_) return false;
+    ++taken_;
+    const Eigen::Index slot = order_[next_++];
+    if (counts_.size() < n_objects + 1) counts_.resize(n_objects + 1, 0);
+    --counts_[std::size_t(clusters[std::size_t(slot)])];
+    ++counts_[std::size_t(c)];
+    x.row(slot) = s.transpose();
+    clusters[std::size_t(slot)] = c;
+    lw[slot] = -std::log(double(lw.size()));
+    return true;
+  }
+
+ private:
+  std::vector<Eigen::Index> order_;
+  std::vector<int> counts_;
+  std::size_t limit_, next_ = 0, taken_ = 0;
+};
+
+}  // namespace
+
 void ReclusteringSir::inject() {
   std::vector<int> novel;
   std::vector<double> novelty;
   novel_measurements(novel, novelty);
   const double min_points = std::max(1.0, params_.min_object_fraction * expected_points());
   if (double(novel.size()) < min_points) return;
-  // The nearest object whose gate holds the centre of state s (index + 1), or 0.
-  auto gate_of = [&](const Eigen::Matrix<float, 6, 1>& s) { return nearest_gate(s[0], s[1]); };
-  // A new object at s if its ellipse holds min_points novel measurements (its index + 1), or -1.
-  auto found = [&](const Eigen::Matrix<float, 6, 1>& s) {
-    int inside = 0;
-    for (const int j : novel) inside += ellipse_d2(s, z_(0, j), z_(1, j)) <= 1.0f ? 1 : 0;
-    if (double(inside) < min_points) return -1;
-    Object o;
-    o.label = next_label_++;
-    o.birth_frame = frame_;
-    o.estimate = s;
-    objects_.push_back(o);
-    return int(objects_.size());
-  };
-  // Where a particle at state s goes (§2 re-clustering): the nearest object whose gate holds its
-  // centre; else a new object if its ellipse holds min_points novel measurements; else nowhere.
-  auto place = [&](const Eigen::Matrix<float, 6, 1>& s) {
-    const int c = gate_of(s);
-    return c > 0 ? c : found(s);
-  };
   Particles::States x = particles_.states();
   Eigen::VectorXd lw = particles_.log_weights();
-  const Eigen::Index n = x.rows();
   // §2.2's free particles: the most likely one may found an object (the initialisation's path to
   // the first objects; injection is the other).
-  Eigen::Index best_free = -1;
-  for (Eigen::Index i = 0; i < n; ++i) {
-    if (clusters_[std::size_t(i)] == 0 && (best_free < 0 || lw[i] > lw[best_free])) best_free = i;
-  }
-  if (best_free >= 0) {
-    const int c = place(x.row(best_free).transpose());
-    if (c > 0) clusters_[std::size_t(best_free)] = c;
-  }
-  // Replacement slots: free particles first, then the lowest weighted, never an object's last.
-  std::vector<Eigen::Index> order(static_cast<std::size_t>(n));
-  std::iota(order.begin(), order.end(), Eigen::Index(0));
-  std::stable_sort(order.begin(), order.end(), [&](Eigen::Index a, Eigen::Index b) {
-    const bool fa = clusters_[std::size_t(a)] == 0, fb = clusters_[std::size_t(b)] == 0;
-    return fa != fb ? fa : lw[a] < lw[b];
-  });
-  std::vector<int> counts(objects_.size() + 1, 0);
-  for (const int c : clusters_) ++counts[std::size_t(c)];
+  place_best_free(x, lw, novel, min_points);
   // At most k particles are injected; candidates that neither join nor found an object (drawn
   // on a noise speck) take no slot, so up to kCandidates k are drawn.
   constexpr std::size_t kCandidates = 4;
-  const auto k = std::size_t(std::ceil(params_.inject_fraction * double(n)));
+  const auto k = std::size_t(std::ceil(params_.inject_fraction * double(x.rows())));
   if (k == 0) return;
   std::vector<std::int64_t> drawn(kCandidates * k);
   core::resample(core::ResamplingScheme::Multinomial,
                  Eigen::Map<const Eigen::VectorXd>(novelty.data(), Eigen::Index(novelty.size())),
                  drawn.size(), rng_, drawn.data());
-  std::size_t injected = 0;
-  const double hw = 0.5 * params_.size_aspect * person_h_, hh = 0.5 * person_h_;
-  const double sxy = params_.sigma_xy * person_h_, sv = params_.sigma_velocity * person_h_;
-  std::size_t next_slot = 0;
-  // Puts s into the lowest-weighted particle whose cluster keeps another one, in cluster c.
-  auto take_slot = [&](const Eigen::Matrix<float, 6, 1>& s, int c) {
-    while (next_slot < order.size()) {
-      const auto ci = std::size_t(clusters_[std::size_t(order[next_slot])]);
-      if (ci == 0 || counts[ci] > 1) break;
-      ++next_slot;
-    }
-    if (next_slot == order.size() || injected == k) return false;
-    ++injected;
-    const Eigen::Index slot = order[next_slot++];
-    if (counts.size() < objects_.size() + 1) counts.resize(objects_.size() + 1, 0);
-    --counts[std::size_t(clusters_[std::size_t(slot)])];
-    ++counts[std::size_t(c)];
-    x.row(slot) = s.transpose();
-    clusters_[std::size_t(slot)] = c;
-    lw[slot] = -std::log(double(n));
-    return true;
-  };
-  std::vector<Eigen::Matrix<float, 6, 1>> joins;
+  InjectionSlots slots(clusters_, lw, objects_.size(), k);
+  std::vector<State> joins;
   for (const std::int64_t d : drawn) {
     // Near the drawn measurement: at the centroid of the novel measurements within a person's
     // ellipse of it, so that the injections drawn from one person's pixels land near one centre
     // and found one object, not one per body part.
-    const Eigen::Vector2f centre = novel_centroid(novel, z_.col(novel[std::size_t(d)]));
-    Eigen::Matrix<float, 6, 1> s;
-    s << float(centre[0] + sxy * rng_.normal()), float(centre[1] + sxy * rng_.normal()),
-        float(sv * rng_.normal()), float(sv * rng_.normal()),
-        float(std::clamp(hw * (1.0 + params_.size_std * rng_.normal()), params_.size_min * hw,
-                         params_.size_max * hw)),
-        float(std::clamp(hh * (1.0 + params_.size_std * rng_.normal()), params_.size_min * hh,
-                         params_.size_max * hh));
+    const State s = injection_state(novel_centroid(novel, z_.col(novel[std::size_t(d)])));
     // Candidates that start objects take slots first, then those joining one: the draws come
     // in measurement (raster) order, and joins into the objects above would otherwise use up
     // the slots before a new person lower in the image is reached.
-    if (gate_of(s) > 0) {
+    if (nearest_gate(s[0], s[1]) > 0) {
       joins.push_back(s);
       continue;
     }
-    const int c = found(s);
-    if (c > 0 && !take_slot(s, c)) break;
+    const int c = found_object(s, novel, min_points);
+    if (c > 0 && !slots.take(s, c, objects_.size(), clusters_, x, lw)) break;
   }
-  for (const auto& s : joins) {
-    if (!take_slot(s, gate_of(s))) break;
+  for (const State& s : joins) {
+    if (!slots.take(s, nearest_gate(s[0], s[1]), objects_.size(), clusters_, x, lw)) break;
   }
   particles_ = Particles(std::move(x), lw);  // normalises the weights
 }
@@ -552,7 +544,7 @@ void ReclusteringSir::recluster() {
   // person (two objects that split a silhouette sit about one half height apart) and merge into
   // the older (earlier) one; a confirmed label is not renamed by an unconfirmed one (as
   // merge_overlapping of the multi-Bernoulli filter).
-  const float hw = float(0.5 * params_.size_aspect * person_h_), hh = float(0.5 * person_h_);
+  const float hw = float(0.5 * params_.size.size_aspect * person_h_), hh = float(0.5 * person_h_);
   const float merge2 = float(params_.merge_distance * params_.merge_distance);
   for (std::size_t a = 0; a < m; ++a) {
     if (ended[a]) continue;
@@ -643,16 +635,9 @@ void ReclusteringSir::report() {
     o.score = zs.cols() > 0 ? double(inside) / double(zs.cols()) : 0.0;
     if (const auto lost = management_.observe(o.label, o.record, box)) o.label = *lost;
     if (!management_.report(o.record, box)) continue;
-    // Calibration to the annotation convention, as MultiBernoulliParams' box_scale_* / offset_*.
-    const double w = box[2] * params_.box_scale_w, h = box[3] * params_.box_scale_h;
-    const double cx = o.estimate[0] + params_.box_offset_x * box[2];
-    const double cy = o.estimate[1] + params_.box_offset_y * box[3];
     TrackEstimate t;
     t.id = o.label;
-    t.x = cx - 0.5 * w;
-    t.y = cy - 0.5 * h;
-    t.w = w;
-    t.h = h;
+    set_calibrated_box(params_.box, o.estimate[0], o.estimate[1], box[2], box[3], t);
     t.score = o.score;
     t.state = o.estimate.cast<double>();
     tracks_.push_back(std::move(t));

@@ -9,13 +9,6 @@
 namespace vtrack::models {
 namespace {
 
-void require_positive(double value, const char* name) {
-  if (!(value > 0.0) || !std::isfinite(value)) {
-    throw InvalidArgument(std::string("depth model ") + name + " must be positive and finite, got " +
-                          std::to_string(value));
-  }
-}
-
 // Pixel coordinate rounded to the nearest pixel boundary, clamped first so that the conversion to
 // int is defined for any state (particles can stray far outside the image).
 int pixel_edge(double v, int limit) {
@@ -59,17 +52,17 @@ DepthLikelihood::DepthLikelihood(DepthLikelihoodParams params) : params_(params)
 
 void validate(const DepthLikelihoodParams& p) {
   const auto& c = p.camera;
-  require_positive(c.fx, "fx");
-  require_positive(c.fy, "fy");
+  require_positive("fx", c.fx);
+  require_positive("fy", c.fy);
   require(std::isfinite(c.cx), "cx", c.cx, "finite");
   require(std::isfinite(c.cy), "cy", c.cy, "finite");
   require(c.width > 0, "camera width", c.width, "> 0");
   require(c.height > 0, "camera height", c.height, "> 0");
-  require_positive(p.person_width, "person_width");
-  require_positive(p.person_height, "person_height");
-  require_positive(p.sigma_target, "sigma_target");
-  require_positive(p.sigma_background, "sigma_background");
-  require_positive(p.min_depth, "min_depth");
+  require_positive("person_width", p.person_width);
+  require_positive("person_height", p.person_height);
+  require_positive("sigma_target", p.sigma_target);
+  require_positive("sigma_background", p.sigma_background);
+  require_positive("min_depth", p.min_depth);
   require(p.tempering > 0.0 && p.tempering <= 1.0, "tempering", p.tempering, "in (0, 1]");
 }
 

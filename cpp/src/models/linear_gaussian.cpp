@@ -7,22 +7,12 @@
 #include "vtrack/core/gaussian.hpp"
 
 namespace vtrack::models {
-namespace {
-
-void require_positive(double value, const char* name) {
-  if (!(value > 0.0) || !std::isfinite(value)) {
-    throw InvalidArgument(std::string(name) + " must be positive and finite, got " +
-                          std::to_string(value));
-  }
-}
-
-}  // namespace
 
 LinearGaussianMotion LinearGaussianMotion::constant_velocity(int axes, double period,
                                                              double sigma_v) {
   if (axes < 1) throw InvalidArgument("axes must be >= 1, got " + std::to_string(axes));
-  require_positive(period, "period");
-  require_positive(sigma_v, "sigma_v");
+  require_positive("period", period);
+  require_positive("sigma_v", sigma_v);
   const int n = 2 * axes;
   LinearGaussianMotion m{Eigen::MatrixXd::Identity(n, n), Eigen::MatrixXd::Zero(n, n)};
   const Eigen::Vector2d g(period * period / 2.0, period);

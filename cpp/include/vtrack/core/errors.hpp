@@ -2,6 +2,7 @@
 // The two error types of vtrack. Every public function reports bad input by throwing one of
 // these with a message that names the argument and its value; nothing in the library asserts on
 // user input, aborts or prints.
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -44,6 +45,11 @@ inline void require(bool ok, const char* name, double value, const char* what) {
 // The same for an integer parameter, whose value is shown exactly (2147483647, not 2.14748e+09).
 inline void require(bool ok, const char* name, int value, const char* what) {
   if (!ok) throw InvalidArgument(std::string(name) + " must be " + what + ", got " + std::to_string(value));
+}
+
+// A parameter that must be a positive finite number.
+inline void require_positive(const char* name, double value) {
+  require(std::isfinite(value) && value > 0.0, name, value, "a positive finite number");
 }
 
 }  // namespace vtrack

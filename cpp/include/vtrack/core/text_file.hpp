@@ -3,6 +3,7 @@
 // with the checks such a file needs before a parser sees it.
 #include <cstddef>
 #include <string>
+#include <vector>
 
 namespace vtrack::core {
 
@@ -27,5 +28,19 @@ int stray_comma_line(const std::string& text);
 
 // The deepest nesting of [ ] and { } outside quoted strings.
 int flow_nesting(const std::string& text);
+
+// Comma-separated text rows (detection files, vehicle observation files).
+
+// `s` without leading and trailing spaces, tabs and carriage returns (files written by other
+// tools sometimes pad their fields).
+std::string trimmed(const std::string& s);
+
+// The fields of `line` between commas, untrimmed; one field for a line without a comma.
+std::vector<std::string> comma_fields(const std::string& line);
+
+// The whole (trimmed) field as a number. InvalidArgument "<where><name> is not a number: '...'"
+// otherwise. strtod's "nan" and "inf" are accepted: callers check finiteness with the field's
+// own rule and name.
+double number_field(const std::string& field, const std::string& name, const std::string& where);
 
 }  // namespace vtrack::core

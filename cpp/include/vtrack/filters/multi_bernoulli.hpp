@@ -31,10 +31,10 @@
 #include "vtrack/core/parameters.hpp"
 #include "vtrack/core/random.hpp"
 #include "vtrack/core/resampling.hpp"
+#include "vtrack/filters/person_prior.hpp"
 #include "vtrack/filters/track_management.hpp"
 #include "vtrack/filters/tracks.hpp"
 #include "vtrack/models/motion.hpp"
-#include "vtrack/models/person_size.hpp"
 #include "vtrack/models/tbd_likelihood.hpp"
 #include "vtrack/smc/particle_set.hpp"
 
@@ -52,49 +52,11 @@ struct MultiBernoulliParams {
   // pixel sizes fitted to PETS09-S2L1 at 768 x 576 before, where h = 85 px, and are those
   // values divided by 85 (or by the width 30).
   //
-  // The prior's mean size. height_mean: pixels, or 0 (default) to learn it from the scene's own
-  // foreground (models/person_size.hpp): h = size_from_foreground x the median height of the
-  // foreground's connected components big enough to be a person, each counted once (y < 0.5
-  // after the likelihood's closing; components cut by the top or bottom border are not counted),
-  // observed every frame and kept for the whole video (size_half_life 0, the default) or forgotten
-  // with a half-life of size_half_life frames (a camera that zooms); until the
-  // components seen add up to the area of one person of the current prior, h = size_initial x
-  // the image height. width_mean: pixels, or 0 (default) for size_aspect x h.
-  // Why learnt (benchmarks/pets09.py, MB with its defaults, MOTA / IDF1 all frames, seed 0): with
-  // the former fixed 30 x 85 px prior, PETS09-S2L1 resized 0.5x gave -0.095 / 0.069 and 1.5x
-  // -1.404 / 0.078; the 512 x 384 crop 0.315 / 0.372 and the 1.5x zoom -0.357 / 0.258. A prior
-  // scaled with the image (h = 0.148 x image height) is right for a resize but wrong for a crop
-  // or a closer camera (the crop's people are the same pixels in a smaller image), which the
-  // learnt one gets right: see the table in benchmarks/pets09.py.
-  double height_mean = 0.0;
+  // The people size prior: its mean height h (given or learnt from the scene's foreground),
+  // aspect, spread and clamp range (filters/person_prior.hpp).
+  PersonSizeParams size;
+  // Pixels, or 0 (default) for size_aspect x h.
   double width_mean = 0.0;
-  // Mean width / mean height of the prior when width_mean is 0: PETS09-S2L1's MOT15 GT people are
-  // 30 x 85 px on average (0.35). The width is not learnt: people walking side by side merge into
-  // one wide foreground component far more often than into a tall one.
-  double size_aspect = 0.35;
-  // h = size_from_foreground x the learnt person height (ForegroundSizeEstimator): a foreground
-  // component is a little shorter than the annotated box around the person (feet and head blend
-  // into the background). Tuned on PETS09-S2L1 frames 1-397 at 768 x 576 (the sweep is in
-  // benchmarks/person_size.py).
-  double size_from_foreground = 1.06;
-  double size_initial = 0.15;      // h / image height before the foreground says (85 / 576)
-  // Frames, >= 0; 0 = never forget. Measured (benchmarks/pets09.py, MB MOTA / IDF1, seed 0; all
-  // frames / 398-795): at 768 x 576 a half-life of 100 frames gave 0.374 / 0.433 and 0.228 / 0.331,
-  // never forgetting 0.496 / 0.454 and 0.427 / 0.417 (a fixed 85 px prior 0.534 / 0.469 and
-  // 0.492 / 0.439): in the second half people walk in groups, the recent components grow taller
-  // and wider than one person, and a forgetting prior follows them. At 384 x 288 (0.5x) 100
-  // frames gave 0.447 / 0.425, never forgetting 0.410 / 0.457.
-  double size_half_life = 0.0;
-  // Standard deviation of the widths and heights of births, as a fraction of the mean (PETS09's
-  // GT: 7.5 / 30 and 19 / 85), and the range widths and heights are clamped to after each
-  // prediction (so a box cannot grow to swallow a group), as fractions of the mean: [0.45, 2].
-  // (Formerly 8 / 20 px, and 12-64 x 40-150 px around 30 x 85: fractions 0.4-2.1 x 0.47-1.76.
-  // The maximum keeps a box from spanning two people walking side by side; measured on
-  // the KDE output of PETS09-S2L1, the fitted prior raised the first 300 frames' calibrated MOTA
-  // from 0.25 (40 x 100 px) to 0.35.)
-  double size_std = 0.25;
-  double size_min = 0.45;
-  double size_max = 2.0;
   // Standard deviations of the random walk x(k+1) = x(k) + e(k) (Section 4) per frame, as
   // fractions of h: positions (x, y) and sizes (w, h). PETS09-S2L1 runs at 7 frames/s, so its
   // walkers move 3-6 px/frame at 768 x 576 (h = 85); a random walk follows a drift of about its
@@ -182,18 +144,10 @@ struct MultiBernoulliParams {
   // 0.549 / 0.614.)
   double velocity_smoothing = 0.3;
   // Reported box: the filter's box fits the foreground as eq. (20) scores it, i.e. the dark core
-  // of a silhouette; annotations (MOTChallenge's) box the whole person with a margin. Each
-  // reported box is scaled about its centre by (box_scale_w, box_scale_h) and its centre moved
-  // by (box_offset_x w, box_offset_y h), w and h being the filter's box size. Only the output
-  // changes: the filter's state, merging and explaining-away use the foreground box. The
-  // defaults are the median GT / estimate ratios and offsets of tracks matched to the MOT15 GT
-  // (IoU > 0.3) on PETS09-S2L1 frames 1-397 with the other defaults (benchmarks/pets09.py's
-  // calibration); set 1, 1, 0, 0 for the foreground box itself.
-  // (Tracker seeds 0-2: 1.757 / 1.746 / 1.756, 1.465 / 1.490 / 1.444, -0.01, -0.01.)
-  double box_scale_w = 1.75;
-  double box_scale_h = 1.47;
-  double box_offset_x = -0.01;
-  double box_offset_y = -0.01;
+  // of a silhouette; annotations (MOTChallenge's) box the whole person with a margin, hence the
+  // calibration (filters/person_prior.hpp). Defaults: the medians of benchmarks/pets09.py's
+  // calibration fit on PETS09-S2L1 frames 1-397.
+  BoxCalibrationParams box{1.75, 1.47, -0.01, -0.01};
 
   // The filter's random engine (prediction noise, births, resampling): the same seed gives the
   // same tracks.
@@ -284,7 +238,7 @@ class MultiBernoulliFilter {
   // sigma_wh h for the size prior's mean height h (set_size_prior).
   models::RandomWalk motion_;
   models::TbdLikelihood likelihood_;
-  models::ForegroundSizeEstimator size_estimator_;
+  PersonHeight person_height_;
   PersonSizePrior size_;
   TrackManager management_;
   std::vector<BernoulliComponent> components_;

@@ -66,10 +66,10 @@
 #include "vtrack/core/parameters.hpp"
 #include "vtrack/core/random.hpp"
 #include "vtrack/core/resampling.hpp"
+#include "vtrack/filters/person_prior.hpp"
 #include "vtrack/filters/track_management.hpp"
 #include "vtrack/filters/tracks.hpp"
 #include "vtrack/models/linear_transition.hpp"
-#include "vtrack/models/person_size.hpp"
 #include "vtrack/smc/particle_set.hpp"
 
 namespace vtrack::filters {
@@ -138,21 +138,11 @@ struct ReclusteringSirParams {
   int max_misses = 3;
 
   // ---- Motion and size, relative to the person height h (names as MultiBernoulliParams).
-  // height_mean: px, or 0 to learn h = size_from_foreground x the person height of the
-  // foreground components (models::ForegroundSizeEstimator::person_height, as the multi-Bernoulli
-  // tracker); size_initial x the image height until the foreground has shown one person's area.
-  // Widths are size_aspect x h. size_from_foreground 1.06 as MultiBernoulliParams (PETS09 frames
-  // 1-397, calibrated MOTA / IDF1, mean of seeds 0-2: 0.85 0.179 / 0.412, 0.94 0.395 / 0.430,
-  // 1.0 0.446 / 0.452, 1.06 0.491 / 0.411, 1.15 0.476 / 0.430).
-  double height_mean = 0.0;
-  double size_aspect = 0.35;
-  double size_from_foreground = 1.06;
-  double size_initial = 0.15;
-  // Axes are clamped to [size_min, size_max] x the prior's half width / half height; the §2.2
-  // initialisation draws them uniformly in that range, injections N(prior, (size_std prior)^2).
-  double size_min = 0.45;
-  double size_max = 2.0;
-  double size_std = 0.25;
+  // The people size prior (filters/person_prior.hpp), as the multi-Bernoulli tracker's: h given
+  // or learnt from the foreground; widths size_aspect x h. Axes are clamped to [size_min,
+  // size_max] x the prior's half width / half height; the §2.2 initialisation draws them
+  // uniformly in that range, injections N(prior, (size_std prior)^2).
+  PersonSizeParams size;
   // Per-frame noise standard deviations as fractions of h: position, velocity, axes.
   double sigma_xy = 0.03;
   double sigma_velocity = 0.02;
@@ -162,17 +152,10 @@ struct ReclusteringSirParams {
   // Confirmation and lost-track memory (filters/track_management.hpp), as the multi-Bernoulli
   // tracker's defaults.
   TrackManagementParams management{5, 30, 0.3};
-  // The reported box: the ellipse's bounding box (2a x 2b) scaled about its centre by
-  // (box_scale_w, box_scale_h), its centre moved by (box_offset_x 2a, box_offset_y 2b): the
-  // annotation convention, as MultiBernoulliParams' box calibration. The defaults are the medians
-  // of the fits (median GT / estimate ratios and offsets of tracks matched to the MOT15 GT,
-  // IoU > 0.3; benchmarks/_foreground.py fit_calibration) on PETS09-S2L1 frames 1-397 with the
-  // other defaults, tracker seeds 0-2: (0.978, 0.965, 0.003, 0.031), (0.967, 0.960, 0.000,
-  // 0.030), (0.981, 0.962, -0.002, 0.032). Set 1, 1, 0, 0 for the ellipse's box itself.
-  double box_scale_w = 0.98;
-  double box_scale_h = 0.96;
-  double box_offset_x = 0.0;
-  double box_offset_y = 0.03;
+  // The reported box: the ellipse's bounding box (2a x 2b) calibrated to the annotation
+  // convention, as MultiBernoulliParams' box. Defaults: the medians of the fits of
+  // benchmarks/_foreground.py's fit_calibration on PETS09-S2L1 frames 1-397.
+  BoxCalibrationParams box{0.98, 0.96, 0.0, 0.03};
 
   std::uint64_t seed = 0;
 
@@ -199,6 +182,7 @@ double ellipse_log_likelihood(float cx, float cy, float a, float b,
 class ReclusteringSir {
  public:
   using Particles = smc::ParticleSet<float, 6>;  // (x, y, vx, vy, a, b), one per row
+  using State = Eigen::Matrix<float, 6, 1>;
 
   struct Object {
     std::uint64_t label;
@@ -236,7 +220,16 @@ class ReclusteringSir {
   void associate();
   void weigh();
   void update_estimates();
+  // Step 6 (Fig. 1): injection of particles near novel measurements; new objects.
   void inject();
+  // The most likely free particle joins the object whose gate holds it or founds one.
+  void place_best_free(const Particles::States& x, const Eigen::VectorXd& lw,
+                       const std::vector<int>& novel, double min_points);
+  // A new object at s when its ellipse holds min_points novel measurements: its index + 1, or -1.
+  int found_object(const State& s, const std::vector<int>& novel, double min_points);
+  // A particle drawn around `centre`: position N(centre, sigma_xy^2), velocity N(0, ...), axes
+  // N(prior, (size_std prior)^2) clamped to the prior's range.
+  State injection_state(const Eigen::Vector2f& centre);
   void recluster();
   void resample();
   void report();
@@ -258,8 +251,7 @@ class ReclusteringSir {
   ReclusteringSirParams params_;
   int width_, height_;
   core::Rng rng_;
-  models::ForegroundSizeEstimator size_estimator_;
-  bool size_learnt_ = false;
+  PersonHeight person_height_;
   double person_h_ = 0.0;
   int grid_ = 1;
   models::LinearTransition motion_;

@@ -1,0 +1,90 @@
+#pragma once
+// The person a foreground tracker looks for: the multi-Bernoulli track-before-detect filter and
+// the re-clustering SIR share it. Its height is given in pixels or learnt from the scene's own
+// foreground (models::ForegroundSizeEstimator), its width a fixed fraction of the height; the
+// box each tracker reports is calibrated to the annotation convention by a scale and a shift.
+// Both are beyond the papers: mb-tbd Section 4 and particle-filters-human-vehicle §2.2 draw sizes
+// from a fixed prior in pixels, which fits one camera at one resolution and one distance.
+#include <opencv2/core.hpp>
+
+#include "vtrack/core/parameters.hpp"
+#include "vtrack/filters/tracks.hpp"
+#include "vtrack/models/person_size.hpp"
+
+namespace vtrack::filters {
+
+struct PersonSizeParams {
+  // The mean person height h: pixels, or 0 (default) to learn it as size_from_foreground x the
+  // person height of the foreground components, with older frames forgotten with a half-life of
+  // size_half_life observed frames (0: never forget; a camera that zooms needs one). Until the
+  // components seen add up to the area of one person of the current prior, h = size_initial x
+  // the image height (85 / 576: PETS09-S2L1's people).
+  double height_mean = 0.0;
+  // Mean width / mean height: PETS09-S2L1's MOT15 GT people are 30 x 85 px on average. The width
+  // is not learnt: people walking side by side merge into one wide foreground component far more
+  // often than into a tall one.
+  double size_aspect = 0.35;
+  // A foreground component is a little shorter than the annotated box around the person (feet
+  // and head blend into the background). Tuned on PETS09-S2L1 frames 1-397 at 768 x 576
+  // (benchmarks/person_size.py --sweep holds the sweep and the held-out figures).
+  double size_from_foreground = 1.06;
+  double size_initial = 0.15;
+  double size_half_life = 0.0;
+  // Standard deviation of new sizes as a fraction of the mean (PETS09's GT: 7.5 / 30 and 19 / 85),
+  // and the range sizes are clamped to after each prediction, as fractions of the mean: the
+  // maximum keeps a box or an ellipse from spanning two people walking side by side.
+  double size_std = 0.25;
+  double size_min = 0.45;
+  double size_max = 2.0;
+
+  static const core::ParameterTable<PersonSizeParams>& table();
+};
+
+// InvalidArgument naming the parameter and its value.
+void validate(const PersonSizeParams& params);
+
+// The reported box: the tracker's own box (w x h about its centre) scaled about its centre by
+// (box_scale_w, box_scale_h) and its centre moved by (box_offset_x w, box_offset_y h). Only the
+// output changes, never the filter's state. Each tracker sets its own defaults (the medians of
+// the fits of benchmarks/pets09.py's calibration); 1, 1, 0, 0 reports the tracker's own box.
+struct BoxCalibrationParams {
+  double box_scale_w = 1.0;
+  double box_scale_h = 1.0;
+  double box_offset_x = 0.0;
+  double box_offset_y = 0.0;
+
+  static const core::ParameterTable<BoxCalibrationParams>& table();
+};
+
+void validate(const BoxCalibrationParams& params);
+
+// Sets t's box (x, y, w, h) from the tracker's box centred at (cx, cy) of size w x h.
+void set_calibrated_box(const BoxCalibrationParams& calibration, double cx, double cy, double w,
+                        double h, TrackEstimate& t);
+
+// The person height in force: height_mean when given, else size_initial x the image height
+// until the foreground has shown enough evidence, then the learnt height.
+class PersonHeight {
+ public:
+  // params must be valid (validate); image_height >= 1.
+  PersonHeight(const PersonSizeParams& params, int image_height);
+
+  double height() const { return height_; }
+  // Whether height() comes from the scene's foreground.
+  bool learnt() const { return learnt_; }
+
+  // Counts the foreground components of y (CV_32FC1, y < threshold is foreground). Returns true
+  // when height() changed. The initial guess stays until the decayed area of the components
+  // counted reaches person_area px^2 (one person of the current prior: the first frames of a
+  // video with people in view; a scene without motion keeps the initial guess). A height given
+  // in pixels never changes.
+  bool observe(const cv::Mat& y, float threshold, double person_area);
+
+ private:
+  const PersonSizeParams params_;
+  models::ForegroundSizeEstimator estimator_;
+  double height_;
+  bool learnt_ = false;
+};
+
+}  // namespace vtrack::filters

@@ -1,0 +1,83 @@
+#include "vtrack/filters/person_prior.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "vtrack/core/errors.hpp"
+
+namespace vtrack::filters {
+
+const core::ParameterTable<PersonSizeParams>& PersonSizeParams::table() {
+  using P = PersonSizeParams;
+  static const auto table = core::ParameterTable<P>()
+                                .add("height_mean", &P::height_mean)
+                                .add("size_aspect", &P::size_aspect)
+                                .add("size_from_foreground", &P::size_from_foreground)
+                                .add("size_initial", &P::size_initial)
+                                .add("size_half_life", &P::size_half_life)
+                                .add("size_std", &P::size_std)
+                                .add("size_min", &P::size_min)
+                                .add("size_max", &P::size_max);
+  return table;
+}
+
+void validate(const PersonSizeParams& p) {
+  require(std::isfinite(p.height_mean) && p.height_mean >= 0.0, "height_mean", p.height_mean,
+          ">= 0 (0: learnt)");
+  require_positive("size_aspect", p.size_aspect);
+  require_positive("size_from_foreground", p.size_from_foreground);
+  require(p.size_initial > 0.0 && p.size_initial <= 1.0, "size_initial", p.size_initial,
+          "in (0, 1]");
+  require(std::isfinite(p.size_half_life) && p.size_half_life >= 0.0, "size_half_life",
+          p.size_half_life, ">= 0 (0: never forget)");
+  require(std::isfinite(p.size_std) && p.size_std >= 0.0, "size_std", p.size_std, ">= 0");
+  require(p.size_min > 0.0 && p.size_min <= 1.0, "size_min", p.size_min, "in (0, 1]");
+  require(std::isfinite(p.size_max) && p.size_max >= 1.0, "size_max", p.size_max,
+          ">= 1 and finite");
+}
+
+const core::ParameterTable<BoxCalibrationParams>& BoxCalibrationParams::table() {
+  using P = BoxCalibrationParams;
+  static const auto table = core::ParameterTable<P>()
+                                .add("box_scale_w", &P::box_scale_w)
+                                .add("box_scale_h", &P::box_scale_h)
+                                .add("box_offset_x", &P::box_offset_x)
+                                .add("box_offset_y", &P::box_offset_y);
+  return table;
+}
+
+void validate(const BoxCalibrationParams& p) {
+  require_positive("box_scale_w", p.box_scale_w);
+  require_positive("box_scale_h", p.box_scale_h);
+  require(std::isfinite(p.box_offset_x), "box_offset_x", p.box_offset_x, "finite");
+  require(std::isfinite(p.box_offset_y), "box_offset_y", p.box_offset_y, "finite");
+}
+
+void set_calibrated_box(const BoxCalibrationParams& c, double cx, double cy, double w, double h,
+                        TrackEstimate& t) {
+  t.w = w * c.box_scale_w;
+  t.h = h * c.box_scale_h;
+  t.x = cx + c.box_offset_x * w - 0.5 * t.w;
+  t.y = cy + c.box_offset_y * h - 0.5 * t.h;
+}
+
+PersonHeight::PersonHeight(const PersonSizeParams& params, int image_height)
+    : params_(params),
+      estimator_(params.size_half_life > 0.0 ? params.size_half_life
+                                             : std::numeric_limits<double>::infinity(),
+                 1e-4, params.size_aspect),
+      height_(params.height_mean > 0.0 ? params.height_mean
+                                       : params.size_initial * image_height) {}
+
+bool PersonHeight::observe(const cv::Mat& y, float threshold, double person_area) {
+  if (params_.height_mean > 0.0) return false;  // given in pixels
+  estimator_.observe(y, threshold);
+  if (!learnt_ && estimator_.weight() < person_area) return false;
+  const double h = params_.size_from_foreground * estimator_.person_height();
+  if (!(h > 0.0)) return false;
+  learnt_ = true;
+  height_ = h;
+  return true;
+}
+
+}  // namespace vtrack::filters
