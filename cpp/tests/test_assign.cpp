@@ -215,6 +215,52 @@ TEST(Murty, FirstEqualsLinearAssignmentOnLargerMatrices) {
   }
 }
 
+// GLMB-shaped matrices (a few detection columns, then each row's own missed and absent columns)
+// whose sparse gates split the rows into independent clusters: ranked per cluster and merged, the
+// k best must still be the brute force's, including ties (integer costs) and the costs summed
+// over the rows in order.
+TEST(Murty, IndependentClustersMatchBruteForce) {
+  core::Rng rng(41);
+  for (int trial = 0; trial < 300; ++trial) {
+    const int n = 1 + static_cast<int>(rng.uniform() * 6), d = static_cast<int>(rng.uniform() * 4);
+    const bool integer = trial % 2 == 0;
+    Eigen::MatrixXd c = Eigen::MatrixXd::Constant(n, d + 2 * n, kInf);
+    const Eigen::MatrixXd values = random_cost(rng, n, d + 2, integer, 0.0);
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < d; ++j) {
+        if (rng.uniform() < 0.3) c(i, j) = values(i, j);
+      }
+      c(i, d + i) = values(i, d);
+      c(i, d + n + i) = values(i, d + 1);
+    }
+    expect_matches_brute_force(c, 1 + static_cast<int>(rng.uniform() * 40));
+  }
+}
+
+TEST(Murty, ClusterWithTooFewColumnsIsInfeasible) {
+  // Rows 0-1 share the one column they can take; row 2 is on its own.
+  Eigen::MatrixXd c = Eigen::MatrixXd::Constant(3, 4, kInf);
+  c(0, 0) = 1.0;
+  c(1, 0) = 2.0;
+  c(2, 1) = 0.5;
+  c(2, 2) = 0.7;
+  EXPECT_EQ(murty(c, 3).costs.size(), 0);
+  c(1, 3) = 4.0;  // now row 1 has a column of its own: two assignments of rows 0-1, two of row 2
+  const auto r = murty(c, 10);
+  ASSERT_EQ(r.costs.size(), 2);  // row 0 must take column 0, row 1 column 3
+  EXPECT_EQ(r.costs[0], 1.0 + 4.0 + 0.5);
+  EXPECT_EQ(r.costs[1], 1.0 + 4.0 + 0.7);
+}
+
+TEST(Murty, ClusteredMatrixStillRejectsNaN) {
+  Eigen::MatrixXd c = Eigen::MatrixXd::Constant(2, 4, kInf);
+  c(0, 0) = 1.0;
+  c(1, 1) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(murty(c, 2), InvalidArgument);
+  c(1, 1) = -kInf;
+  EXPECT_THROW(murty(c, 2), InvalidArgument);
+}
+
 TEST(Murty, EmptyProblemHasOneAssignment) {
   const auto r = murty(Eigen::MatrixXd(0, 3), 4);
   ASSERT_EQ(r.costs.size(), 1);

@@ -172,7 +172,7 @@ void GaussianTracks::log_detection_likelihoods(const Candidate& c,
   constexpr double kInf = std::numeric_limits<double>::infinity();
   for (Eigen::Index j = 0; j < z.cols(); ++j) {
     const double d2 = c.innovation.mahalanobis_squared(z.col(j));
-    out[j] = d2 <= gate ? c.innovation.log_likelihood(z.col(j)) : -kInf;
+    out[j] = d2 <= gate ? c.innovation.log_likelihood_at(d2) : -kInf;
   }
 }
 

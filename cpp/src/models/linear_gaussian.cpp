@@ -86,12 +86,20 @@ KalmanInnovation::KalmanInnovation(const GaussianDensity& predicted,
 }
 
 double KalmanInnovation::mahalanobis_squared(const Eigen::Ref<const Eigen::VectorXd>& z) const {
+  // The GLMB scores every track against every detection: the whitened residual of the usual
+  // measurement sizes lives on the stack (the same arithmetic, no allocation per pair).
+  using Small = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 8, 1>;
+  if (z.size() <= Small::MaxRowsAtCompileTime) {
+    Small white = z - predicted_z_;
+    innovation_llt_.matrixL().solveInPlace(white);
+    return white.squaredNorm();
+  }
   const Eigen::VectorXd white = innovation_llt_.matrixL().solve(z - predicted_z_);
   return white.squaredNorm();
 }
 
 double KalmanInnovation::log_likelihood(const Eigen::Ref<const Eigen::VectorXd>& z) const {
-  return log_normaliser_ - 0.5 * mahalanobis_squared(z);
+  return log_likelihood_at(mahalanobis_squared(z));
 }
 
 GaussianDensity KalmanInnovation::posterior(const Eigen::Ref<const Eigen::VectorXd>& z) const {

@@ -16,7 +16,10 @@
 // IEEE TAES 33(3): each subproblem is solved by a single augmentation from its parent's solution
 // and duals, subproblems enter the queue with a dual lower bound and are solved only when they
 // reach its front (not at all when the bound is attained by a one- or two-edge path), and rows
-// are partitioned in order of decreasing lower bound.
+// are partitioned in order of decreasing lower bound. A matrix whose finite entries split the rows
+// into independent clusters (no column finite for rows of two clusters, as gating makes a GLMB
+// update's matrices) is ranked per cluster and the k best sums of the clusters' rankings are
+// merged lazily: the same k best, from much smaller problems.
 #include <cstdint>
 #include <vector>
 
@@ -42,8 +45,9 @@ LinearAssignment linear_assignment(const Eigen::Ref<const Eigen::MatrixXd>& cost
 
 // The k' <= k best assignments in non-decreasing cost: row r of `assignments` (k' x n) gives each
 // row's column, `costs[r]` its total. k' < k exactly when fewer than k feasible assignments exist
-// (k' = 0 for an infeasible matrix). Equal costs appear in unspecified order but every assignment
-// is distinct. Throws InvalidArgument for the bad `cost` of linear_assignment (except
+// (k' = 0 for an infeasible matrix). Equal costs appear in unspecified order (which of them make
+// the k-th place too) but every assignment is distinct; each cost is summed over the rows in
+// order. Throws InvalidArgument for the bad `cost` of linear_assignment (except
 // infeasibility) and for k <= 0.
 struct RankedAssignments {
   Eigen::Matrix<std::int64_t, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> assignments;

@@ -62,6 +62,10 @@ class KalmanInnovation {
   double log_likelihood(const Eigen::Ref<const Eigen::VectorXd>& z) const;
   // Squared Mahalanobis distance (z - H m)^T S^{-1} (z - H m), for gating.
   double mahalanobis_squared(const Eigen::Ref<const Eigen::VectorXd>& z) const;
+  // log_likelihood(z) from z's mahalanobis_squared (a gate has computed it already).
+  double log_likelihood_at(double mahalanobis_squared) const {
+    return log_normaliser_ - 0.5 * mahalanobis_squared;
+  }
   // Posterior N(m + K (z - H m), (I - K H) P) in Joseph form.
   GaussianDensity posterior(const Eigen::Ref<const Eigen::VectorXd>& z) const;
 
