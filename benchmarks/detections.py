@@ -151,7 +151,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(__file__))
 from _table import print_table  # noqa: E402
-from pets09 import default_gt, default_video, run_sort, select  # noqa: E402
+from _foreground import Tracker, default_gt, default_video, select, track_boxes  # noqa: E402
 
 import vtrack  # noqa: E402
 from vtrack.evaluate import evaluate  # noqa: E402
@@ -198,8 +198,10 @@ def hog_detections(video: str) -> np.ndarray:
 
 
 def per_frame_boxes(det: np.ndarray):
-    """(x, y, w, h) arrays of frames 1..FRAMES, SORT's input."""
-    return [det[det[:, 0] == f, 2:6] for f in range(1, FRAMES + 1)]
+    """(x, y, w, h, score) arrays of frames 1..FRAMES, SORT's input (score 1: SORT's reference
+    implementation ignores it)."""
+    return [np.hstack([det[det[:, 0] == f, 2:6], np.ones((int((det[:, 0] == f).sum()), 1))])
+            for f in range(1, FRAMES + 1)]
 
 
 def timed(fn, repeats: int):
@@ -288,7 +290,7 @@ def main(argv=None) -> int:
                 methods[variant] = timed(lambda: run_glmb(det, **params), 1)
         if have_sort:
             boxes = per_frame_boxes(det)
-            methods["SORT"] = timed(lambda: run_sort(boxes, 1), args.repeats)
+            methods["SORT"] = timed(lambda: track_boxes(boxes, Tracker("sort"), 1), args.repeats)
         results = {}
         for name, (tracks, seconds) in methods.items():
             results[name] = scores(gt, tracks)
