@@ -150,6 +150,11 @@ class ParticleTracks {
                       bool is_birth);
   void log_detection_likelihoods(const Candidate& c, const Eigen::Ref<const Eigen::MatrixXd>& z,
                                  double gate, Eigen::Ref<Eigen::RowVectorXd> out) const;
+  // log g1(z_j | missed density) for every detection j (-inf outside the gate): eq. (2) under the
+  // particles reweighted by the depth likelihood (the density a missed track carries on with),
+  // for the adaptive birth's r_U (AdaptiveBirthParams::missed_tracks).
+  void log_missed_likelihoods(const Candidate& c, const Eigen::Ref<const Eigen::MatrixXd>& z,
+                              double gate, Eigen::Ref<Eigen::RowVectorXd> out) const;
   double log_missed_likelihood(const Candidate& c) const { return c.log_eta_depth; }
   Density detected(const Candidate& c, const Eigen::Ref<const Eigen::VectorXd>& z);
   Density missed(const Candidate& c);
@@ -160,6 +165,12 @@ class ParticleTracks {
   // log g1(z | x_p) for every particle (eq. 2), from the candidate's H x_p.
   void log_g1(const Candidate& c, const Eigen::Ref<const Eigen::VectorXd>& z,
               Eigen::VectorXd& out) const;
+  // log sum_p exp(log_w_p + log_extra_p) g1(z_j|x_p) per detection (-inf outside the gate of the
+  // moment-matched Gaussian); log_extra may be empty.
+  void gated_log_likelihoods(const Candidate& c, const Eigen::VectorXd& log_w,
+                             const Eigen::VectorXd& log_extra,
+                             const Eigen::Ref<const Eigen::MatrixXd>& z, double gate,
+                             Eigen::Ref<Eigen::RowVectorXd> out) const;
   // Adds log_lik to the weights, renormalises, and resamples when N_eff is low.
   Density reweight(const Density& prior, const Eigen::VectorXd& log_lik);
   // n x d standard normal draws, filled particle by particle (as the d x n layout this filter had
