@@ -219,12 +219,112 @@ void coefficients_direct(const HsvBinImage& bins, const double* boxes, std::size
   }
 }
 
-// Each box's counts from the previous box's (in Morton order of the corners, so consecutive boxes
-// overlap most): remove the pixels of prev \ box, add those of box \ prev; count afresh when the
-// symmetric difference is not smaller than the box.
-void coefficients_incremental(const HsvBinImage& bins, const std::vector<Rect>& rects,
-                              const float* sqrt_q, double* rho) {
-  const int m = bins.bins();
+// Unweighted histograms for the incremental method: per-bin pixel counts.
+class PixelCounts {
+ public:
+  explicit PixelCounts(int m) : m_(m), counts_(static_cast<std::size_t>(4 * m), 0) {}
+  void count(const HsvBinImage& bins, const Rect& r) {
+    std::fill(counts_.begin(), counts_.begin() + m_, 0);
+    count_rect(bins, r, counts_.data(), counts_.data() + m_);
+  }
+  template <int Sign>
+  void add(const HsvBinImage& bins, const Rect& r) {
+    add_rect<Sign>(bins, r, counts_.data());
+  }
+  double rho(const HsvBinImage&, const Rect& r, const double*, const float* sqrt_q) const {
+    return rho_from_counts(counts_.data(), sqrt_q, m_, area(r));
+  }
+
+ private:
+  int m_;
+  std::vector<std::int32_t> counts_;  // m counts, then 3 x m scratch for count_rect
+};
+
+// Kernel-weighted histograms for the incremental method. The Epanechnikov weight of a pixel,
+// k = 1 - (dx^2 + dy^2) / a^2, is a polynomial in its coordinates, so a bin's total weight
+//   hist[u] = sum_{pixels in u} k = n_u - (S_u - 2 ex X_u - 2 ey Y_u + (ex^2 + ey^2) n_u) / a^2
+// follows from four per-bin moments of its pixels' coordinates (x, y) relative to the region's
+// origin -- the count n_u, X_u = sum x, Y_u = sum y, S_u = sum (x^2 + y^2) -- and the box's
+// centre (ex, ey) in those coordinates (dx = x - ex, dy = y - ey, pixel centres at +0.5). The
+// moments do not depend on the box's centre or size, so they are updated by the pixels that
+// change between neighbouring boxes, as counts are. They are integers held in doubles: exact,
+// whatever order pixels are added and removed in, while below 2^53 (any region up to 8192 x 8192
+// pixels). No pixel weight is negative (every pixel centre of a box lies inside the continuous
+// box, so r <= a), which is why the per-pixel max(0, k) of add_kernel_rect is not needed here; a
+// bin is clamped at 0 only against rounding.
+class PixelMoments {
+ public:
+  explicit PixelMoments(int m)
+      : m_(m), moments_(static_cast<std::size_t>(4 * m), 0.0) {}
+  void count(const HsvBinImage& bins, const Rect& r) {
+    std::fill(moments_.begin(), moments_.end(), 0.0);
+    add<1>(bins, r);
+  }
+  template <int Sign>
+  void add(const HsvBinImage& bins, const Rect& r) {
+    if (is_empty(r)) return;
+    double* n = moments_.data();
+    double* sx = n + m_;
+    double* sy = sx + m_;
+    double* ss = sy + m_;
+    const int x0 = r.x - bins.roi().x;
+    for (int row = r.y; row < r.y + r.height; ++row) {
+      const double y = row - bins.roi().y;
+      const std::uint16_t* idx = bins.row_ptr(row) + x0;
+      for (int c = 0; c < r.width; ++c) {
+        const double x = x0 + c;
+        const std::uint16_t u = idx[c];
+        n[u] += Sign;
+        sx[u] += Sign * x;
+        sy[u] += Sign * y;
+        ss[u] += Sign * (x * x + y * y);
+      }
+    }
+  }
+  // rho of the box b = (x, y, w, h), whose clipped pixel rect is r (eq. 10).
+  double rho(const HsvBinImage& bins, const Rect& r, const double* b, const float* sqrt_q) const {
+    const double a2 = 0.25 * (b[2] * b[2] + b[3] * b[3]);
+    const double ex = b[0] + 0.5 * b[2] - 0.5 - bins.roi().x;
+    const double ey = b[1] + 0.5 * b[3] - 0.5 - bins.roi().y;
+    if (is_empty(r) || !(a2 > 0) || !std::isfinite(a2 + ex + ey)) return 0.0;
+    const double c0 = 1.0 - (ex * ex + ey * ey) / a2, cx = 2.0 * ex / a2, cy = 2.0 * ey / a2;
+    const double cs = 1.0 / a2;
+    const double* n = moments_.data();
+    const double* sx = n + m_;
+    const double* sy = sx + m_;
+    const double* ss = sy + m_;
+    double total[4] = {}, acc[4] = {};
+    int u = 0;
+    for (; u + 4 <= m_; u += 4) {
+      for (int k = 0; k < 4; ++k) {
+        const double h = std::max(0.0, c0 * n[u + k] + cx * sx[u + k] + cy * sy[u + k] -
+                                           cs * ss[u + k]);
+        total[k] += h;
+        acc[k] += std::sqrt(h) * static_cast<double>(sqrt_q[u + k]);
+      }
+    }
+    double t = total[0] + total[1] + total[2] + total[3];
+    double s = acc[0] + acc[1] + acc[2] + acc[3];
+    for (; u < m_; ++u) {
+      const double h = std::max(0.0, c0 * n[u] + cx * sx[u] + cy * sy[u] - cs * ss[u]);
+      t += h;
+      s += std::sqrt(h) * static_cast<double>(sqrt_q[u]);
+    }
+    return t > 0.0 ? std::min(1.0, s / std::sqrt(t)) : 0.0;
+  }
+
+ private:
+  int m_;
+  std::vector<double> moments_;  // n, X, Y, S: m values each
+};
+
+// Each box's histogram from the previous box's (in Morton order of the corners, so consecutive
+// boxes overlap most): remove the pixels of prev \ box, add those of box \ prev; count afresh
+// when the symmetric difference is not smaller than the box. `Histogram` is PixelCounts or
+// PixelMoments.
+template <class Histogram>
+void coefficients_incremental(const HsvBinImage& bins, const double* boxes, std::size_t stride,
+                              const std::vector<Rect>& rects, const float* sqrt_q, double* rho) {
   const std::size_t n = rects.size();
   std::vector<std::pair<std::uint32_t, std::uint32_t>> order(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -233,8 +333,7 @@ void coefficients_incremental(const HsvBinImage& bins, const std::vector<Rect>& 
                 static_cast<std::uint32_t>(i)};
   }
   std::sort(order.begin(), order.end());
-  std::vector<std::int32_t> counts(static_cast<std::size_t>(4 * m), 0);
-  std::int32_t* partial = counts.data() + m;
+  Histogram hist(bins.bins());
   Rect prev{};
   Rect pieces[4];
   for (const auto& [code, i] : order) {
@@ -245,16 +344,15 @@ void coefficients_incremental(const HsvBinImage& bins, const std::vector<Rect>& 
     }
     const long long changed = area(prev) + area(r) - 2 * area(intersect(prev, r));
     if (is_empty(prev) || changed >= area(r)) {
-      std::fill(counts.data(), counts.data() + m, 0);
-      count_rect(bins, r, counts.data(), partial);
+      hist.count(bins, r);
     } else {
       const int gone = difference(prev, r, pieces);
-      for (int k = 0; k < gone; ++k) add_rect<-1>(bins, pieces[k], counts.data());
+      for (int k = 0; k < gone; ++k) hist.template add<-1>(bins, pieces[k]);
       const int added = difference(r, prev, pieces);
-      for (int k = 0; k < added; ++k) add_rect<1>(bins, pieces[k], counts.data());
+      for (int k = 0; k < added; ++k) hist.template add<1>(bins, pieces[k]);
     }
     prev = r;
-    rho[i] = rho_from_counts(counts.data(), sqrt_q, m, area(r));
+    rho[i] = hist.rho(bins, r, boxes + i * stride, sqrt_q);
   }
 }
 
@@ -476,16 +574,15 @@ void ColorModel::coefficients(const HsvBinImage& bins, const double* boxes, std:
   }
   if (n == 0) return;
   require(stride >= 4, "stride", static_cast<double>(stride), "at least 4 (x, y, w, h)");
-  if (params_.kernel && method == HistogramMethod::incremental) {
-    throw InvalidArgument("kernel-weighted histograms are counted by the direct method only");
-  }
   const std::vector<Rect> rects = clipped_rects(bins, boxes, n, stride);
-  // automatic: incremental counts whenever they apply (they were faster than direct counts for
-  // every box size, particle count and spread measured in benchmarks/color_histogram.py).
-  if (method == HistogramMethod::direct || params_.kernel) {
+  // automatic: incremental (it was faster than direct counting for every box size, particle
+  // count and spread measured in benchmarks/color_histogram.py, weighted or not).
+  if (method == HistogramMethod::direct) {
     coefficients_direct(bins, boxes, stride, rects, params_.kernel, sqrt_q_.data(), rho);
+  } else if (params_.kernel) {
+    coefficients_incremental<PixelMoments>(bins, boxes, stride, rects, sqrt_q_.data(), rho);
   } else {
-    coefficients_incremental(bins, rects, sqrt_q_.data(), rho);
+    coefficients_incremental<PixelCounts>(bins, boxes, stride, rects, sqrt_q_.data(), rho);
   }
 }
 
