@@ -1,7 +1,7 @@
 // Micro-benchmark of the colour particle filter's update (filters/color_particle.hpp) split by
 // stage, on real frames: PETS09-S2L1 person 15 from frame 1 (its MOTChallenge GT box), followed
 // for 150 frames, then the same frames' particle clouds scored again stage by stage. One thread,
-// process CPU time, medians over frames (microseconds per update). benchmarks/follow.py has the
+// its CPU time, medians over frames (microseconds per update). benchmarks/follow.py has the
 // figures and what they led to.
 //
 // Build against the library of a `make build` (same flags as the library) and run, on one line:
@@ -13,6 +13,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+
+#include <time.h>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -25,7 +27,12 @@ using namespace vtrack;
 
 namespace {
 
-double cpu_us() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC * 1e6; }
+// The calling thread's CPU time (as benchmarks/follow.py's time.thread_time).
+double cpu_us() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) * 1e6 + static_cast<double>(t.tv_nsec) * 1e-3;
+}
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
