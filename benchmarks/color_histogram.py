@@ -36,8 +36,9 @@ through per-bin coordinate moments), same machine, CPU us per call, direct / inc
 direct / kernel incremental / NumPy: 20x50, N = 30, tight 37 / 25 / 99 / 34 / 240; 40x100, N =
 90, tight 230 / 64 / 638 / 98 / 1825, wide 334 / 188 / 852 / 266 / 1350; 60x150, N = 210, tight
 980 / 162 / 4763 / 261 / 5154; 100x250, N = 210, tight 2756 / 284 / 9682 / 585 / 11410, wide 2972
-/ 1400 / 9739 / 1784 / 16262. The incremental kernel-weighted count costs 1.3-2x the unweighted
-incremental one and is 2-18x faster than the direct kernel-weighted count in all 24 cases.
+/ 1400 / 9739 / 1784 / 16262. The incremental kernel-weighted count costs 0.8-2.3x (mostly
+1.3-1.7x) the unweighted incremental one and is 2-18x faster than the direct kernel-weighted count
+in all 24 cases.
 
 An integral histogram over the region (one summed-area table per bin, then 4 lookups per bin per
 box) was measured as a third method in commit 2754c4f (then with cv::cvtColor and scalar sums, so
