@@ -323,7 +323,7 @@ def test_outputs_are_checked_before_the_run_so_a_failure_leaves_nothing(vtrack_c
     result = vtrack_cli("track", video, "--out", tmp_path / "missing" / "t.txt", "--render", render)
     assert result.returncode == 1, result.stderr
     assert "missing" in result.stderr
-    assert not render.exists() and not (tmp_path / "r.partial.avi").exists()
+    assert not render.exists() and not list(tmp_path.glob("r.*partial*"))
 
 
 # ---------------------------------------------------------------------------------------------

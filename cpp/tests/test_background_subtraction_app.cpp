@@ -84,7 +84,9 @@ TEST_F(BgsAppTest, TruncatedInputKeepsCompleteImagesAndNoVideo) {
   }
   EXPECT_THROW(apps::run_background_subtraction(clip, (dir_ / "y.avi").string(), {}), IoError);
   EXPECT_FALSE(fs::exists(dir_ / "y.avi"));
-  EXPECT_FALSE(fs::exists(dir_ / "y.partial.avi"));
+  for (const auto& entry : fs::directory_iterator(dir_)) {  // nor its temporary file
+    EXPECT_EQ(entry.path().filename().string().find("partial"), std::string::npos) << entry.path();
+  }
 }
 
 TEST_F(BgsAppTest, BadParametersTouchNoFile) {

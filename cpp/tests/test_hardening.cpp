@@ -97,9 +97,34 @@ TEST_F(Scratch, RegisteredTemporaryFilesAreRemovedOnRequestOnly) {
   const std::string video = (dir_ / "out.avi").string();
   vtrack::apps::AtomicVideoWriter writer(video, 10, cv::Size(32, 24));
   writer.write(cv::Mat(24, 32, CV_8UC3, cv::Scalar(1, 2, 3)));
-  EXPECT_TRUE(fs::exists(dir_ / "out.partial.avi"));
+  const auto partial_videos = [&] {
+    std::vector<std::string> found;
+    for (const auto& entry : fs::directory_iterator(dir_)) {
+      const std::string name = entry.path().filename().string();
+      if (name.rfind("out.", 0) == 0 && name.size() > 12 &&
+          name.compare(name.size() - 12, 12, ".partial.avi") == 0) {
+        found.push_back(name);
+      }
+    }
+    return found;
+  };
+  EXPECT_EQ(partial_videos().size(), 1u);
   vtrack::apps::remove_temporary_files();  // what the CLI's second-signal handler does
-  EXPECT_FALSE(fs::exists(dir_ / "out.partial.avi"));
+  EXPECT_TRUE(partial_videos().empty());
+  EXPECT_FALSE(fs::exists(video));
+}
+
+TEST(TemporaryFiles, EveryWriteGetsItsOwnName) {
+  namespace apps = vtrack::apps;
+  const fs::path target = fs::path("dir") / "tracks.txt";
+  const fs::path a = apps::partial_path(target), b = apps::partial_path(target);
+  EXPECT_NE(a, b);  // two writers of one target never share a temporary file
+  EXPECT_EQ(a.parent_path(), target.parent_path());
+  EXPECT_EQ(a.filename().string().rfind("tracks.txt.", 0), 0u);
+  EXPECT_EQ(a.extension(), ".partial");
+  const fs::path video = apps::partial_path(fs::path("out.mp4"), /*keep_extension=*/true);
+  EXPECT_EQ(video.extension(), ".mp4");  // FFmpeg picks the container from it
+  EXPECT_EQ(video.stem().extension(), ".partial");
 }
 
 TEST_F(Scratch, OutputsAreCheckedAgainstInputsAndEachOther) {

@@ -259,7 +259,7 @@ def _remove_leftovers(folder: Path) -> None:
     """Temporary files of an earlier attempt on this input (killed, or interrupted)."""
     if folder.is_dir():
         for entry in folder.iterdir():
-            # atomic_open's, the C++ writers' (NAME.partial) and this batch's renders.
+            # atomic_open's, the C++ text writers' (NAME.<pid>-<n>.partial) and this batch's renders.
             if (is_temporary(entry.name) or entry.name.endswith(".partial")
                     or entry.name.startswith(".render.")):
                 entry.unlink(missing_ok=True)

@@ -40,7 +40,8 @@ class FolderWriter : public YWriter {
   void write(const cv::Mat& y8, long long index) override {
     char name[32];
     std::snprintf(name, sizeof name, "%06lld", index);
-    const fs::path partial = folder_ / (std::string(name) + ".partial.png");
+    const fs::path target = folder_ / (std::string(name) + ".png");
+    const fs::path partial = partial_path(target, /*keep_extension=*/true);
     TemporaryFile registered(partial.string());
     bool written = false;
     try {
@@ -53,7 +54,7 @@ class FolderWriter : public YWriter {
       fs::remove(partial, ec);  // a half-written image is not left behind
       throw IoError("cannot write frame " + std::to_string(index) + " to '" + partial.string() + "'");
     }
-    rename_or_throw(partial, folder_ / (std::string(name) + ".png"));
+    rename_or_throw(partial, target);
   }
   void finish() override {}
   std::string state_after_failure(long long frames_written) const override {

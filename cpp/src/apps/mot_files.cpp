@@ -93,7 +93,7 @@ std::vector<Detection> read_detections(const std::string& path, double min_confi
 void write_text_atomically(const std::string& path,
                            const std::function<void(std::ostream&)>& write_lines) {
   const std::filesystem::path target(path);
-  const std::filesystem::path partial = target.string() + ".partial";
+  const std::filesystem::path partial = partial_path(target);
   TemporaryFile registered(partial.string());
   {
     std::ofstream out(partial);

@@ -2,6 +2,7 @@
 
 #include <atomic>
 #include <cstring>
+#include <string>
 
 #include <unistd.h>
 
@@ -20,7 +21,16 @@ static_assert(std::atomic<int>::is_always_lock_free, "the signal handler needs l
 
 Slot slots[kMaxTemporaryFiles];
 
+std::atomic<unsigned long> partial_count{0};
+
 }  // namespace
+
+std::filesystem::path partial_path(const std::filesystem::path& target, bool keep_extension) {
+  const std::string unique = "." + std::to_string(::getpid()) + "-" +
+                             std::to_string(partial_count.fetch_add(1)) + ".partial";
+  if (!keep_extension) return target.string() + unique;
+  return target.parent_path() / (target.stem().string() + unique + target.extension().string());
+}
 
 TemporaryFile::TemporaryFile(const std::string& path) {
   if (path.empty() || path.size() >= kMaxPath) return;

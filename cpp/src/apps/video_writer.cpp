@@ -35,17 +35,8 @@ void rename_or_throw(const fs::path& from, const fs::path& to) {
   }
 }
 
-namespace {
-
-fs::path partial_video_path(const std::string& path) {
-  const fs::path target(path);
-  return target.parent_path() / (target.stem().string() + ".partial" + target.extension().string());
-}
-
-}  // namespace
-
 AtomicVideoWriter::AtomicVideoWriter(const std::string& path, double fps, cv::Size size)
-    : path_(path), partial_(partial_video_path(path)), registered_(partial_.string()) {
+    : path_(path), partial_(partial_path(path, /*keep_extension=*/true)), registered_(partial_.string()) {
   const int fourcc = lower_extension(path) == ".mp4" ? cv::VideoWriter::fourcc('m', 'p', '4', 'v')
                                                      : cv::VideoWriter::fourcc('M', 'J', 'P', 'G');
   if (!writer_.open(partial_.string(), cv::CAP_FFMPEG, fourcc, fps, size, true)) {
