@@ -136,7 +136,9 @@ tables above are unchanged to the last digit):
 * the boxes counted in a greedy chain (each next box the cheapest from the last among the next 64
   in Morton order) rather than Morton order alone, which jumps between quadrants of the cloud and
   counts those boxes afresh: 50.9k -> 38.7k pixel updates per frame at N = 30, 262k -> 170k at
-  N = 210; 0.143 / 0.51 ms.
+  N = 210; 0.143 / 0.51 ms;
+* the unweighted counts' strips in two copies by parity too: unweighted update at N = 210 400 ->
+  377 us (color_micro, medians of three runs each; at N = 30 within the noise).
 
 Tried and dropped (color_micro, no gain beyond the noise): four copies of the moments instead of
 two; a per-column table of (1, x, 0, x^2) instead of building each pixel's vector; skipping pixels

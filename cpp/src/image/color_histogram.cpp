@@ -44,11 +44,19 @@ int round_px(double v) {
 // counts[u] += Sign for each pixel of `r` (clipped, inside the bin image's region): for the thin
 // strips of the incremental method.
 template <int Sign>
-void add_rect(const HsvBinImage& bins, const Rect& r, std::int32_t* counts) {
+void add_rect(const HsvBinImage& bins, const Rect& r, std::int32_t* counts, std::int32_t* other) {
   if (is_empty(r)) return;
   for (int row = r.y; row < r.y + r.height; ++row) {
     const std::uint16_t* idx = bins.row_ptr(row) + (r.x - bins.roi().x);
-    for (int c = 0; c < r.width; ++c) counts[idx[c]] += Sign;
+    // Pixels of even and odd row + column go to two copies (as PixelMoments, for the same reason).
+    std::int32_t* even = (row + r.x) & 1 ? other : counts;
+    std::int32_t* odd = (row + r.x) & 1 ? counts : other;
+    int c = 0;
+    for (; c + 2 <= r.width; c += 2) {
+      even[idx[c]] += Sign;
+      odd[idx[c + 1]] += Sign;
+    }
+    if (c < r.width) even[idx[c]] += Sign;
   }
 }
 
@@ -222,22 +230,25 @@ void coefficients_direct(const HsvBinImage& bins, const double* boxes, std::size
 // Unweighted histograms for the incremental method: per-bin pixel counts.
 class PixelCounts {
  public:
-  PixelCounts(int m, const float*) : m_(m), counts_(static_cast<std::size_t>(4 * m), 0) {}
+  PixelCounts(int m, const float*) : m_(m), counts_(static_cast<std::size_t>(5 * m), 0) {}
   void count(const HsvBinImage& bins, const Rect& r) {
-    std::fill(counts_.begin(), counts_.begin() + m_, 0);
-    count_rect(bins, r, counts_.data(), counts_.data() + m_);
+    std::fill(counts_.begin(), counts_.begin() + 2 * m_, 0);
+    count_rect(bins, r, counts_.data(), counts_.data() + 2 * m_);
   }
   template <int Sign>
   void add(const HsvBinImage& bins, const Rect& r) {
-    add_rect<Sign>(bins, r, counts_.data());
+    add_rect<Sign>(bins, r, counts_.data(), counts_.data() + m_);
   }
-  double rho(const HsvBinImage&, const Rect& r, const double*, const float* sqrt_q) const {
-    return rho_from_counts(counts_.data(), sqrt_q, m_, area(r));
+  double rho(const HsvBinImage&, const Rect& r, const double*, const float* sqrt_q) {
+    std::int32_t* total = counts_.data() + 2 * m_;  // count_rect's scratch, free here
+    for (int u = 0; u < m_; ++u) total[u] = counts_[u] + counts_[m_ + u];
+    return rho_from_counts(total, sqrt_q, m_, area(r));
   }
 
  private:
   int m_;
-  std::vector<std::int32_t> counts_;  // m counts, then 3 x m scratch for count_rect
+  // Two copies of the m counts (add_rect), then 3 x m scratch for count_rect.
+  std::vector<std::int32_t> counts_;
 };
 
 // Kernel-weighted histograms for the incremental method. The Epanechnikov weight of a pixel,
