@@ -209,6 +209,12 @@ void apply_vehicle_config(VehiclePipelineParams& p, const Config& config) {
   if (config.seed) p.estimator.seed = *config.seed;
 }
 
+std::vector<PipelineSection> vehicle_sections(const VehiclePipelineParams& p) {
+  return {{"background", image::KdeBackgroundParams::table().values(p.background)},
+          {"blobs", VehicleBlobParams::table().values(p.blobs)},
+          {"estimator", filters::VehicleEstimatorParams::table().values(p.estimator)}};
+}
+
 namespace {
 
 struct Blob {

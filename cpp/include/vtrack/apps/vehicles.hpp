@@ -24,6 +24,7 @@
 
 #include "vtrack/apps/config.hpp"
 #include "vtrack/apps/mot_files.hpp"
+#include "vtrack/apps/pipeline.hpp"
 #include "vtrack/apps/video_source.hpp"
 #include "vtrack/filters/vehicle_dimensions.hpp"
 #include "vtrack/image/kde_background.hpp"
@@ -108,6 +109,9 @@ void set_vehicle_parameter(VehiclePipelineParams& params, const std::string& nam
 // Applies a config file's sections background, blobs, estimator and its top-level seed (the
 // estimator's); InvalidArgument for another section.
 void apply_vehicle_config(VehiclePipelineParams& params, const Config& config);
+// The config sections background, blobs and estimator with the values in `params` (what
+// `vtrack params --method vehicles` prints and --config reads back).
+std::vector<PipelineSection> vehicle_sections(const VehiclePipelineParams& params);
 
 struct VehiclePipelineResult {
   std::vector<filters::VehicleEstimate> vehicles;  // confirmed tracks, by id (ids from 1, in order of appearance)
