@@ -78,6 +78,25 @@ double brute_force_rho(const std::vector<double>& p, double p_total, const std::
   return s;
 }
 
+// Every histogram method's coefficients of `boxes` (x, y, w, h each) against `model` equal the
+// brute-force histogram's.
+void expect_every_method_matches_brute_force(const ColorModel& model, const cv::Mat& frame,
+                                             const ColorHistogramParams& p, const std::vector<double>& boxes) {
+  const std::size_t n = boxes.size() / 4;
+  HsvBinImage bins(p);
+  for (const auto method :
+       {HistogramMethod::automatic, HistogramMethod::direct, HistogramMethod::incremental}) {
+    std::vector<double> rho(n, -1.0);
+    model.coefficients(frame, boxes.data(), n, 4, rho.data(), bins, method);
+    for (std::size_t i = 0; i < n; ++i) {
+      double total = 0;
+      const auto hist = brute_force_histogram(frame, p, &boxes[4 * i], &total);
+      ASSERT_NEAR(rho[i], brute_force_rho(hist, total, model.reference()), 2e-6)
+          << "method " << static_cast<int>(method) << " box " << i;
+    }
+  }
+}
+
 std::vector<double> random_boxes(Rng& rng, int n, int cols, int rows) {
   std::vector<double> boxes;
   for (int i = 0; i < n; ++i) {
@@ -259,19 +278,7 @@ TEST(ColorModel, EveryMethodMatchesBruteForce) {
         boxes.push_back(v);
       }
     }
-    const std::size_t n = boxes.size() / 4;
-    HsvBinImage bins(p);
-    for (const auto method :
-         {HistogramMethod::automatic, HistogramMethod::direct, HistogramMethod::incremental}) {
-      std::vector<double> rho(n, -1.0);
-      model.coefficients(frame, boxes.data(), n, 4, rho.data(), bins, method);
-      for (std::size_t i = 0; i < n; ++i) {
-        double total = 0;
-        const auto hist = brute_force_histogram(frame, p, &boxes[4 * i], &total);
-        ASSERT_NEAR(rho[i], brute_force_rho(hist, total, model.reference()), 2e-6)
-            << "method " << static_cast<int>(method) << " box " << i;
-      }
-    }
+    expect_every_method_matches_brute_force(model, frame, p, boxes);
   }
 }
 
@@ -296,18 +303,7 @@ TEST(ColorModel, KernelWeightedCoefficientsMatchBruteForce) {
       boxes.push_back(i % 5 == 0 ? std::floor(v) + 0.5 : v);
     }
   }
-  const std::size_t n = boxes.size() / 4;
-  for (const auto method :
-       {HistogramMethod::automatic, HistogramMethod::direct, HistogramMethod::incremental}) {
-    std::vector<double> rho(n, -1.0);
-    model.coefficients(frame, boxes.data(), n, 4, rho.data(), bins, method);
-    for (std::size_t i = 0; i < n; ++i) {
-      double total = 0;
-      const auto hist = brute_force_histogram(frame, p, &boxes[4 * i], &total);
-      ASSERT_NEAR(rho[i], brute_force_rho(hist, total, model.reference()), 2e-6)
-          << "method " << static_cast<int>(method) << " box " << i;
-    }
-  }
+  expect_every_method_matches_brute_force(model, frame, p, boxes);
 }
 
 TEST(ColorModel, StridedBoxesAndSharedBinImage) {
