@@ -259,7 +259,7 @@ class GlmbTracker:
         adaptive_birth_rate: float = 0.1,
         adaptive_birth_max_existence: float = 0.03,
         adaptive_birth_max: int = 100,
-        adaptive_birth_missed_tracks: bool = True,
+        adaptive_birth_missed_tracks: bool = False,
         occlusion_rate: float = 0.0,
         occlusion_length: float = 10.0,
         occlusion_max_length: int = 1000,
