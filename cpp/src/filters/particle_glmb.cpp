@@ -36,6 +36,7 @@ const core::ParameterTable<ParticleParams>& ParticleParams::table() {
       core::ParameterTable<P>()
           .add("n_particles", &P::n_particles)
           .add("resample_threshold", &P::resample_threshold)
+          .add("regularise", &P::regularise)
           .add("depth_for_births", &P::depth_for_births)
           .add("mask_detections", &P::mask_detections)
           .add("occlusion_margin", &P::occlusion_margin)
@@ -210,9 +211,39 @@ ParticleDensity ParticleTracks::reweight(const Density& prior, const Eigen::Vect
   }
   const Eigen::Index n = out.size();
   if (out.ess() < params_.resample_threshold * static_cast<double>(n)) {
+    if (!params_.regularise) {
+      out.resample(core::ResamplingScheme::Systematic, n, rng_);
+      return out;
+    }
+    const Eigen::VectorXd mean = out.mean();
+    const Eigen::MatrixXd cov = out.covariance();
     out.resample(core::ResamplingScheme::Systematic, n, rng_);
+    regularise(out, mean, cov);
   }
   return out;
+}
+
+void ParticleTracks::regularise(Density& d, const Eigen::VectorXd& mean,
+                                const Eigen::MatrixXd& cov) {
+  // Silverman's bandwidth for a Gaussian kernel in d dimensions (Musso, Oudjane & Le Gland 2001,
+  // the regularised particle filter), and Liu & West's (2001) shrinkage a = sqrt(1 - h^2): the
+  // kernel density a x_i + (1 - a) m + h L e has the mean m and the covariance
+  // a^2 P + h^2 P = P of the weighted particles, not P (1 + h^2).
+  const auto n = static_cast<double>(d.size());
+  const auto dim = static_cast<double>(d.dim());
+  const double h = std::pow(4.0 / (n * (dim + 2.0)), 1.0 / (dim + 4.0));
+  const double a = std::sqrt(1.0 - h * h);
+  // P may be singular (a collapsed cloud, or a state component no particle varies in): the
+  // symmetric square root from the eigen-decomposition, negative round-off clamped to zero.
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(0.5 * (cov + cov.transpose()));
+  const Eigen::MatrixXd root = eig.eigenvectors() *
+                               eig.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal() *
+                               eig.eigenvectors().transpose();
+  const Eigen::MatrixXd& noise = normal_draws(d.size(), d.dim());
+  Eigen::MatrixXd& x = d.states();
+  x *= a;
+  x.rowwise() += ((1.0 - a) * mean).transpose();
+  x.noalias() += h * noise * root;  // root is symmetric: rows e_i^T root = (root e_i)^T
 }
 
 ParticleDensity ParticleTracks::detected(const Candidate& c,
