@@ -28,6 +28,13 @@ Eigen::MatrixXd cholesky_of(const Eigen::MatrixXd& cov, const std::string& what)
   return llt.matrixL();
 }
 
+// The symmetric square root S (S S^T = S^2 = A) of a positive semi-definite A, from its
+// eigen-decomposition with negative round-off clamped to zero (A may be singular).
+Eigen::MatrixXd symmetric_sqrt(const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>& eig) {
+  return eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal() *
+         eig.eigenvectors().transpose();
+}
+
 }  // namespace
 
 const core::ParameterTable<ParticleParams>& ParticleParams::table() {
@@ -65,9 +72,7 @@ ParticleTracks::ParticleTracks(ParticleParams params, std::uint64_t seed,
   if (eig.info() != Eigen::Success || eig.eigenvalues().minCoeff() < -1e-9 * (1.0 + Q.norm())) {
     throw InvalidArgument("motion Q is not positive semi-definite");
   }
-  motion_noise_sqrt_ = eig.eigenvectors() *
-                       eig.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal() *
-                       eig.eigenvectors().transpose();
+  motion_noise_sqrt_ = symmetric_sqrt(eig);
   noise_llt_.compute(0.5 * (observation.R + observation.R.transpose()));
   if (noise_llt_.info() != Eigen::Success) {
     throw InvalidArgument("observation R is not positive definite");
@@ -233,12 +238,9 @@ void ParticleTracks::regularise(Density& d, const Eigen::VectorXd& mean,
   const auto dim = static_cast<double>(d.dim());
   const double h = std::pow(4.0 / (n * (dim + 2.0)), 1.0 / (dim + 4.0));
   const double a = std::sqrt(1.0 - h * h);
-  // P may be singular (a collapsed cloud, or a state component no particle varies in): the
-  // symmetric square root from the eigen-decomposition, negative round-off clamped to zero.
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(0.5 * (cov + cov.transpose()));
-  const Eigen::MatrixXd root = eig.eigenvectors() *
-                               eig.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal() *
-                               eig.eigenvectors().transpose();
+  // P may be singular (a collapsed cloud, or a state component no particle varies in).
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(0.5 * (cov + cov.transpose()));
+  const Eigen::MatrixXd root = symmetric_sqrt(eig);
   const Eigen::MatrixXd& noise = normal_draws(d.size(), d.dim());
   Eigen::MatrixXd& x = d.states();
   x *= a;
