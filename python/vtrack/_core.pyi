@@ -374,6 +374,7 @@ class MultiBernoulliTracker:
         size_min: float = 0.45,
         size_max: float = 2.0,
         width_mean: float = 0.0,
+        size_by_row: bool = False,
         sigma_xy: float = 0.06,
         sigma_wh: float = 0.02,
         quarter_birth: bool = True,

@@ -40,6 +40,7 @@ const core::ParameterTable<MultiBernoulliParams>& MultiBernoulliParams::table() 
           .add("survival_probability", &P::survival_probability)
           .include(&P::size)
           .add("width_mean", &P::width_mean)
+          .add("size_by_row", &P::size_by_row)
           .add("sigma_xy", &P::sigma_xy)
           .add("sigma_wh", &P::sigma_wh)
           .add("quarter_birth", &P::quarter_birth)
@@ -153,6 +154,7 @@ MultiBernoulliFilter::MultiBernoulliFilter(int width, int height,
       management_(params.management) {
   if (width < 1) throw InvalidArgument("width must be >= 1, got " + std::to_string(width));
   if (height < 1) throw InvalidArgument("height must be >= 1, got " + std::to_string(height));
+  person_height_.set_fit_line(params_.size_by_row);
   set_size_prior(person_size_prior(params_, params_.width_mean, person_height_.height()));
 }
 
@@ -173,6 +175,24 @@ void MultiBernoulliFilter::update_size_prior() {
   PersonSizePrior size = person_size_prior(params_, params_.width_mean, person_height_.height());
   size.learnt = true;
   set_size_prior(size);
+  row_scale_.clear();
+  if (params_.size_by_row && person_height_.by_row()) {
+    row_scale_.resize(static_cast<std::size_t>(height_));
+    for (int r = 0; r < height_; ++r) {
+      row_scale_[static_cast<std::size_t>(r)] = person_height_.height_at_foot(r) / size_.height;
+    }
+  }
+}
+
+double MultiBernoulliFilter::row_scale(double foot_row) const {
+  if (row_scale_.empty() || !std::isfinite(foot_row)) return 1.0;
+  const auto r = static_cast<std::size_t>(std::clamp(foot_row, 0.0, double(height_ - 1)));
+  return row_scale_[r];
+}
+
+double MultiBernoulliFilter::centre_row_scale(double cy) const {
+  if (row_scale_.empty()) return 1.0;
+  return row_scale(cy + 0.5 * size_.height * row_scale(cy + 0.5 * size_.height));
 }
 
 const Tracks& MultiBernoulliFilter::step(const cv::Mat& y) {
@@ -245,9 +265,13 @@ void MultiBernoulliFilter::manage_tracks() {
   }
 }
 
-void MultiBernoulliFilter::clamp_sizes(BoxParticles::States& s) const {
-  s.col(2) = s.col(2).cwiseMax(float(size_.width_min)).cwiseMin(float(size_.width_max));
-  s.col(3) = s.col(3).cwiseMax(float(size_.height_min)).cwiseMin(float(size_.height_max));
+void MultiBernoulliFilter::clamp_sizes(BoxParticles::States& s, float scale) const {
+  s.col(2) = s.col(2)
+                 .cwiseMax(scale * float(size_.width_min))
+                 .cwiseMin(scale * float(size_.width_max));
+  s.col(3) = s.col(3)
+                 .cwiseMax(scale * float(size_.height_min))
+                 .cwiseMin(scale * float(size_.height_max));
 }
 
 void MultiBernoulliFilter::predict() {
@@ -261,6 +285,14 @@ void MultiBernoulliFilter::predict() {
     noise_.resize(4 * static_cast<std::size_t>(n));
     rng_.fill_normal(noise_.data(), noise_.size());
     eps_ = Eigen::Map<const BoxStates>(noise_.data(), 4, n).transpose();
+    // size_by_row: the sigmas and the size range of a person centred on the component's estimate
+    // (before the move).
+    float scale = 1.0f;
+    if (!row_scale_.empty()) {
+      const Eigen::Vector4f m = c.mean();
+      scale = float(centre_row_scale(m[1] + 0.5f * m[3]));
+      eps_ *= scale;
+    }
     next_.resize(n, 4);
     motion_.propagate(models::StatesView<float>(c.particles.states()),
                       models::StatesView<float>(eps_), models::MutableStatesView<float>(next_));
@@ -269,13 +301,13 @@ void MultiBernoulliFilter::predict() {
     auto& x = c.particles.states();
     x.col(0).array() += c.record.velocity[0];
     x.col(1).array() += c.record.velocity[1];
-    clamp_sizes(x);
+    clamp_sizes(x, scale);
   }
 }
 
 void MultiBernoulliFilter::add_birth(double existence, double cx_lo, double cx_hi, double cy_lo,
                                      double cy_hi, const Eigen::Vector2d& size,
-                                     const Eigen::Vector2d& size_std) {
+                                     const Eigen::Vector2d& size_std, bool prior_size) {
   const int n = params_.birth_particles;
   BoxParticles::States x(n, 4);
   // 2n uniforms for the centres, 2n normals for the sizes, drawn in batches.
@@ -284,13 +316,16 @@ void MultiBernoulliFilter::add_birth(double existence, double cx_lo, double cx_h
   rng_.fill_uniform(u.data(), u.size());
   rng_.fill_normal(z.data(), z.size());
   for (int j = 0; j < n; ++j) {
-    // Normal size, truncated (by clamping) to the allowed range.
-    const double w = std::clamp(size[0] + size_std[0] * z[2 * j], size_.width_min,
-                                size_.width_max);
-    const double h = std::clamp(size[1] + size_std[1] * z[2 * j + 1], size_.height_min,
-                                size_.height_max);
     const double cx = cx_lo + (cx_hi - cx_lo) * u[2 * j];
     const double cy = cy_lo + (cy_hi - cy_lo) * u[2 * j + 1];
+    // size_by_row: the scale of a person centred on the box's row (see centre_row_scale).
+    const double f = centre_row_scale(cy);
+    const double k = prior_size ? f : 1.0;
+    // Normal size, truncated (by clamping) to the allowed range.
+    const double w = std::clamp(k * (size[0] + size_std[0] * z[2 * j]), f * size_.width_min,
+                                f * size_.width_max);
+    const double h = std::clamp(k * (size[1] + size_std[1] * z[2 * j + 1]), f * size_.height_min,
+                                f * size_.height_max);
     x.row(j) << float(cx - 0.5 * w), float(cy - 0.5 * h), float(w), float(h);
   }
   // Equal weights 1/n.
@@ -309,7 +344,7 @@ void MultiBernoulliFilter::add_quarter_births() {
   for (int q = 0; q < 4; ++q) {
     const double x0 = (q % 2) * hw;
     const double y0 = (q / 2) * hh;
-    add_birth(params_.birth_probability, x0, x0 + hw, y0, y0 + hh, size, size_std);
+    add_birth(params_.birth_probability, x0, x0 + hw, y0, y0 + hh, size, size_std, true);
   }
 }
 
@@ -323,11 +358,26 @@ void MultiBernoulliFilter::add_adaptive_births() {
     Eigen::Vector4f box;
   };
   std::vector<Candidate> candidates;
-  const int stride = size_.birth_stride;
+  // The window's size and the grid's stride at a foot row: the prior's, times the row's scale
+  // with size_by_row (1 otherwise, where the rows are those of y = -wh/2, -wh/2 + stride, ...).
+  struct Grid {
+    int ww, wh, stride;
+  };
+  auto grid_at = [this](double scale, int foot) {
+    const double f = row_scale(foot);
+    return Grid{std::max(1, int(std::lround(scale * f * size_.width))),
+                std::max(1, int(std::lround(scale * f * size_.height))),
+                row_scale_.empty() ? size_.birth_stride
+                                   : std::max(1, int(std::lround(params_.adaptive_birth_stride *
+                                                                 f * size_.height)))};
+  };
   for (const double scale : {0.85, 1.0, 1.3}) {
-    const int ww = std::max(1, int(std::lround(scale * size_.width)));
-    const int wh = std::max(1, int(std::lround(scale * size_.height)));
-    for (int y = -wh / 2; y <= height_ - wh / 2; y += stride) {
+    const Grid first = grid_at(scale, 0);
+    for (int foot = first.wh - first.wh / 2;;) {
+      const auto [ww, wh, stride] = grid_at(scale, foot);
+      const int y = foot - wh;
+      if (y > height_ - wh / 2) break;
+      foot += stride;
       for (int x = -ww / 2; x <= width_ - ww / 2; x += stride) {
         if (2 * likelihood_.integral().area({x, y, ww, wh}) < static_cast<long long>(ww) * wh) {
           continue;
@@ -362,7 +412,7 @@ void MultiBernoulliFilter::add_adaptive_births() {
     const double cy = b[1] + 0.5 * b[3];
     const Eigen::Vector2d size(b[2], b[3]);
     add_birth(params_.adaptive_birth_probability, cx - 0.15 * b[2], cx + 0.15 * b[2],
-              cy - 0.15 * b[3], cy + 0.15 * b[3], size, 0.15 * size);
+              cy - 0.15 * b[3], cy + 0.15 * b[3], size, 0.15 * size, false);
   }
 }
 
