@@ -10,10 +10,13 @@ N(0, 1 px): a particle cloud after a few frames of tracking) and "wide" (centres
 and N(0, 0.15 h), sizes N(0, 0.05 w / h): right after a jump, or a lost track). Methods:
 
 * direct: each box's pixels, one increment per pixel (four partial histograms);
-* incremental: boxes in Morton order of their corners, each box's counts updated from the
+* incremental: boxes in a greedy chain (each next box the one that differs least from the last
+  among the next 64 in Morton order of their corners), each box's counts updated from the
   previous box's by the pixels that differ (a direct count when that is not cheaper); the
-  default ('auto') for unweighted histograms;
-* kernel: direct with Nummiaro's Epanechnikov weights (the only method that supports them);
+  default ('auto');
+* kernel direct / kernel incremental: the same two with Nummiaro's Epanechnikov weights (direct:
+  a double weight per pixel; incremental: per-bin moments of the pixels' coordinates, from which
+  the weights follow, updated by the pixels that differ; the default for kernel=True);
 * NumPy: cv2.cvtColor of the region once, then one np.bincount per box over its slice (the
   histogram code of benchmarks/follow.py's NumPy particle filter), the Bhattacharyya
   coefficient as one matrix product;
@@ -27,6 +30,15 @@ call): direct / incremental / kernel / NumPy / per-box calcHist at 20x50, N = 30
 direct counts, 5.5-48x for incremental ones (5.5-9x on wide clouds, 12-48x on tight ones).
 Incremental counting beat direct counting in all 24 cases, so ColorModel uses it by default. The
 kernel-weighted count costs 2-4x the direct one (a double weight per pixel).
+
+After issue 11's speed work (greedy chain; kernel-weighted histograms counted incrementally
+through per-bin coordinate moments), same machine, CPU us per call, direct / incremental / kernel
+direct / kernel incremental / NumPy: 20x50, N = 30, tight 37 / 25 / 99 / 34 / 240; 40x100, N =
+90, tight 230 / 64 / 638 / 98 / 1825, wide 334 / 188 / 852 / 266 / 1350; 60x150, N = 210, tight
+980 / 162 / 4763 / 261 / 5154; 100x250, N = 210, tight 2756 / 284 / 9682 / 585 / 11410, wide 2972
+/ 1400 / 9739 / 1784 / 16262. The incremental kernel-weighted count costs 0.8-2.3x (mostly
+1.3-1.7x) the unweighted incremental one and is 2-18x faster than the direct kernel-weighted count
+in all 24 cases.
 
 An integral histogram over the region (one summed-area table per bin, then 4 lookups per bin per
 box) was measured as a third method in commit 2754c4f (then with cv::cvtColor and scalar sums, so
@@ -140,8 +152,9 @@ def main() -> None:
     cv2.setNumThreads(1)
     frame = read_frame(args.video, args.frame)
     rng = np.random.default_rng(0)
-    header = ["boxes", "N", "spread", "direct us", "incremental us", "kernel us", "NumPy us",
-              "calcHist us", "NumPy / direct", "NumPy / incremental"]
+    header = ["boxes", "N", "spread", "direct us", "incremental us", "kernel direct us",
+              "kernel incremental us", "NumPy us", "calcHist us", "NumPy / direct",
+              "NumPy / incremental"]
     rows = []
     for w, h in SIZES:
         box = (CENTRE[0] - w / 2, CENTRE[1] - h / 2, w, h)
@@ -155,11 +168,16 @@ def main() -> None:
                 ref = model.coefficients(frame, boxes)
                 direct = model.coefficients(frame, boxes, method="direct")
                 assert np.allclose(direct, ref, atol=1e-5)
+                assert np.allclose(kernel.coefficients(frame, boxes, method="direct"),
+                                   kernel.coefficients(frame, boxes, method="incremental"),
+                                   atol=1e-9)
                 assert np.allclose(numpy_scorer.coefficients(frame, boxes), ref, atol=1e-5)
                 calls = {
                     "direct": lambda: model.coefficients(frame, boxes, method="direct"),
                     "incremental": lambda: model.coefficients(frame, boxes, method="incremental"),
-                    "kernel": lambda: kernel.coefficients(frame, boxes),
+                    "kernel direct": lambda: kernel.coefficients(frame, boxes, method="direct"),
+                    "kernel incremental": lambda: kernel.coefficients(frame, boxes,
+                                                                      method="incremental"),
                     "numpy": lambda: numpy_scorer.coefficients(frame, boxes),
                     "calchist": lambda: calchist_coefficients(frame, boxes, q),
                 }

@@ -3,6 +3,7 @@ on generated road scenes (vtrack.synthetic_road), per method.
 
 Usage: python benchmarks/vehicles.py [--vehicles N] [--seed S] [--step K] [--noise PX ...]
                                      [--video-vehicles M] [--video-setups NAME ...] [--video-seed S2]
+                                     [--video-scale F] [--video-set NAME=VALUE ...]
                                      [--scene-dir DIR] [--video-only]
 
 From observations: for every camera set-up of vtrack.synthetic_road, a scene of N vehicles (seed
@@ -49,6 +50,7 @@ lane at the same speed, side by side) still reach the estimator as one outline.
 
 import argparse
 import csv
+import dataclasses
 import os
 import sys
 import tempfile
@@ -194,13 +196,25 @@ def iou(a, b):
     return inter / (a[2] * a[3] + b[2] * b[3] - inter)
 
 
+def scaled_setup(name, scale):
+    """Set-up `name` at `scale` times its resolution: the same field of view (the focal length and
+    the image size scaled together), so the same scene in `scale`^2 times the pixels."""
+    setup = CAMERA_SETUPS[name]
+    if scale == 1.0:
+        return setup
+    return dataclasses.replace(setup, focal=setup.focal * scale,
+                               image_width=round(setup.image_width * scale),
+                               image_height=round(setup.image_height * scale))
+
+
 def written_scene(name, args, folder):
     """The video scene of set-up `name` written to `folder` (--scene-dir: reused when it is there,
     the generator being seeded; else a temporary folder)."""
     paths = {k: os.path.join(folder, f) for k, f in
              (("video", "video.mkv"), ("camera", "camera.json"), ("vehicles", "vehicles.csv"), ("boxes", "boxes.csv"))}
     if not all(os.path.exists(p) for p in paths.values()):
-        scene = make_road_scene(name, n_vehicles=args.video_vehicles, seed=args.video_seed)
+        scene = make_road_scene(scaled_setup(name, args.video_scale), n_vehicles=args.video_vehicles,
+                                seed=args.video_seed)
         scene.write(folder, video="video.mkv")
     return paths
 
@@ -210,7 +224,8 @@ def video_scene(name, args):
     def run(folder):
         paths = written_scene(name, args, folder)
         start = time.perf_counter()
-        vehicles, tracks = vtrack.vehicles.measure_vehicles(paths["video"], paths["camera"], return_tracks=True)
+        vehicles, tracks = vtrack.vehicles.measure_vehicles(paths["video"], paths["camera"], return_tracks=True,
+                                                            **args.video_set)
         seconds = time.perf_counter() - start
         with open(paths["vehicles"]) as f:
             truth = {int(r["vehicle_id"]): argparse.Namespace(heavy=r["light_heavy"] == "heavy", W=float(r["W"]),
@@ -225,7 +240,8 @@ def video_scene(name, args):
         return vehicles, tracks, seconds / n_frames, truth, boxes
 
     if args.scene_dir:
-        return run(os.path.join(args.scene_dir, f"{name}_{args.video_vehicles}_{args.video_seed}"))
+        scale = "" if args.video_scale == 1.0 else f"_x{args.video_scale:g}"
+        return run(os.path.join(args.scene_dir, f"{name}{scale}_{args.video_vehicles}_{args.video_seed}"))
     with tempfile.TemporaryDirectory() as folder:
         return run(folder)
 
@@ -264,7 +280,7 @@ def from_video(args):
                            sum(not e["valid"] for e in unmatched), sum(e["valid"] for e in unmatched),
                            ", ".join(f"{c} as {w}" for c, w in wrong) or "-"))
     print(f"\nTable 2: end to end from video (the defaults), {args.video_vehicles} vehicles per set-up, "
-          f"scene seed {args.video_seed}\n")
+          f"scene seed {args.video_seed}, resolution x{args.video_scale:g}\n")
     print_table(["set-up", "found", "reported", "light correct", "heavy correct", "mean", "MAE W (m)", "MAE H (m)",
                  "MAE L (m)", "ms per frame"], rows)
     print("\nTable 3: the reported vehicles beyond one per ground-truth vehicle (a second track of a vehicle "
@@ -284,11 +300,17 @@ def main():
     parser.add_argument("--video-vehicles", type=int, default=0)
     parser.add_argument("--video-setups", nargs="+", default=["mast_high", "gantry"])
     parser.add_argument("--video-seed", type=int, default=None, help="the video scenes' seed (default: --seed + 100)")
+    parser.add_argument("--video-set", nargs="+", default=[], metavar="NAME=VALUE",
+                        help="pipeline parameters other than the defaults (measure_vehicles' keywords)")
+    parser.add_argument("--video-scale", type=float, default=1.0,
+                        help="render the video scenes at this multiple of the set-ups' resolution (960x540)")
     parser.add_argument("--scene-dir", default=None,
                         help="write the video scenes here and reuse them on later runs (rendering is slow)")
     parser.add_argument("--video-only", action="store_true", help="skip Table 1 (from observations)")
     parser.add_argument("--ablations", action="store_true", help="the ABLATIONS table instead of METHODS")
     args = parser.parse_args()
+    args.video_set = {name: float(value) if "." in value else int(value)
+                      for name, value in (item.split("=", 1) for item in args.video_set)}
     if args.video_seed is None:
         args.video_seed = args.seed + 100
     if not args.video_only:

@@ -148,8 +148,8 @@ released while scoring.
            py::arg("method") = "auto",
            "Bhattacharyya coefficients (eq. 10) of the (N, 4) boxes against the template, (N,) "
            "float64. `method` only changes how the counts are computed: 'direct' counts each "
-           "box's pixels, 'incremental' (unweighted only) updates a neighbouring box's counts by "
-           "the pixels that differ, 'auto' is incremental unless kernel=True.")
+           "box's pixels, 'incremental' updates a neighbouring box's counts (or weights) by "
+           "the pixels that differ, 'auto' is incremental.")
       .def(
           "log_likelihood",
           [](const ColorModel& model, const py::handle& frame, const py::handle& boxes,

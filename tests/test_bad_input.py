@@ -298,7 +298,7 @@ USAGE_CASES = [
     (["vehicles", "{video}", "--observations", "{obs}", "--camera", "{cam}", "--out", "{out}"], "either"),
     (["vehicles", "{video}", "--camera", "{cam}", "--out", "{out}", "--render", "{out_dir}/r.txt"], "--render"),
     (["vehicles", "{video}", "--camera", "{cam}", "--out", "{out}", "--tracks", "{video}"], "--tracks"),
-    (["vehicles", "{video}", "--camera", "{cam}", "--out", "{out}", "--set", "min_area=0"], "min_area"),
+    (["vehicles", "{video}", "--camera", "{cam}", "--out", "{out}", "--set", "min_area=-1"], "min_area"),
     (["vehicles", "{video}", "--camera", "{cam}", "--out", "{out}", "--set", "blob_closing=4"], "blob_closing"),
     (["bogus"], "bogus"),
     ([], "no command"),

@@ -202,3 +202,27 @@ def test_load_config_errors_name_the_problem(tmp_path):
         vtrack.load_config(bad)
     with pytest.raises(TypeError, match="did you mean 'delta_f'"):
         vtrack.track_video(bad, config={"tracker": {"delta_ff": 1.0}})
+
+
+def test_vtrack_params_for_the_vehicles_pipeline(tmp_path, vtrack_cli):
+    """`vtrack params --method vehicles` prints the sections `vtrack vehicles` reads (background,
+    blobs, estimator) with the same precedence (config < --seed < --set), and its output read
+    back as --config gives the same parameters."""
+    config = tmp_path / "config.json"
+    config.write_text(json.dumps({"seed": 5, "blobs": {"min_area": 90, "lost_memory": 7}}))
+    cli = vtrack_cli("params", "--method", "vehicles", "--config", config, "--seed", 6,
+                     "--set", "min_area=40", "--set", "sampler=ray")
+    assert cli.returncode == 0, cli.stderr
+    found = json.loads(cli.stdout)
+    assert list(found) == ["background", "blobs", "estimator"]
+    assert set(found["estimator"]) == set(vtrack.vehicles.VehicleDimensionEstimator.default_params())
+    assert set(found["background"]) == set(vtrack.KdeBackground.default_params())
+    assert found["blobs"]["min_area"] == 40 and found["blobs"]["lost_memory"] == 7
+    assert found["estimator"]["seed"] == 6 and found["estimator"]["sampler"] == "ray"
+    again = tmp_path / "effective.json"
+    again.write_text(cli.stdout)
+    cli2 = vtrack_cli("params", "--method", "vehicles", "--config", again)
+    assert cli2.returncode == 0, cli2.stderr
+    assert json.loads(cli2.stdout) == found
+    bad = vtrack_cli("params", "--method", "vehicles", "--set", "min_aera=3")
+    assert bad.returncode == 2 and "min_area" in bad.stderr  # the closest known name

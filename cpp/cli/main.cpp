@@ -356,18 +356,9 @@ std::string json_value(const vtrack::core::ParameterValue& v) {
   return vtrack::core::to_text(v);
 }
 
-// `vtrack params`: the parameters a `vtrack track` with the same options would run with, as
-// JSON sections (what --config reads back).
-int run_params(const std::vector<std::string>& args) {
-  TrackOptions o;
-  const std::string input = walk_arguments("params", args, [&](const std::string& a, const std::string& value) {
-    if (!parameter_option(o, a, value)) throw UsageError("unknown option '" + a + "'");
-  });
-  if (!input.empty()) throw UsageError("params takes no VIDEO, got '" + input + "'");
-  check_method(o);
-  const auto params = track_params(o);
+// Config sections as JSON (what --config reads back).
+void print_sections(const std::vector<vtrack::apps::PipelineSection>& sections) {
   std::cout << "{\n";
-  const auto sections = vtrack::apps::pipeline_sections(params);
   for (std::size_t s = 0; s < sections.size(); ++s) {
     std::cout << "  \"" << sections[s].name << "\": {\n";
     const auto& values = sections[s].values;
@@ -378,6 +369,27 @@ int run_params(const std::vector<std::string>& args) {
     std::cout << "  }" << (s + 1 < sections.size() ? ",\n" : "\n");
   }
   std::cout << "}\n";
+}
+
+struct VehicleOptions;
+vtrack::apps::VehiclePipelineParams vehicle_params(const VehicleOptions& o);
+void print_vehicle_params(const TrackOptions& o);
+
+// `vtrack params`: the parameters a `vtrack track` (or, with --method vehicles, a `vtrack
+// vehicles`) with the same options would run with, as JSON sections.
+int run_params(const std::vector<std::string>& args) {
+  TrackOptions o;
+  const std::string input = walk_arguments("params", args, [&](const std::string& a, const std::string& value) {
+    if (!parameter_option(o, a, value)) throw UsageError("unknown option '" + a + "'");
+  });
+  if (!input.empty()) throw UsageError("params takes no VIDEO, got '" + input + "'");
+  if (o.method == "vehicles") {
+    if (!o.detector.empty()) throw UsageError("--detector is not an option of vehicles");
+    print_vehicle_params(o);
+    return 0;
+  }
+  check_method(o);
+  print_sections(vtrack::apps::pipeline_sections(track_params(o)));
   return 0;
 }
 
@@ -532,6 +544,14 @@ vtrack::apps::VehiclePipelineParams vehicle_params(const VehicleOptions& o) {
   return params;
 }
 
+void print_vehicle_params(const TrackOptions& o) {
+  VehicleOptions v;
+  v.config = o.config;
+  v.settings = o.settings;
+  v.seed = o.seed;
+  print_sections(vtrack::apps::vehicle_sections(vehicle_params(v)));
+}
+
 int run_vehicles(const std::vector<std::string>& args) {
   VehicleOptions o;
   o.input = walk_arguments("vehicles", args, [&](const std::string& a, const std::string& value) {
@@ -674,10 +694,11 @@ const std::vector<Command>& commands() {
        "  --set name=value one parameter of the tracker (repeatable)",
        run_follow},
       {"params", "print the parameters a track run would use, as JSON config sections",
-       "vtrack params [--method mb|sir|glmb] [--detector hog] [--config FILE] [--seed N]\n"
+       "vtrack params [--method mb|sir|glmb|vehicles] [--detector hog] [--config FILE] [--seed N]\n"
        "              [--set name=value ...]\n\n"
        "  Resolves the defaults, the config file, --seed and --set exactly as `vtrack track`\n"
-       "  does and prints the result: each section of the method with every parameter.",
+       "  (`vtrack vehicles` for --method vehicles) does and prints the result: each section\n"
+       "  of the method with every parameter.",
        run_params},
       {"vehicles",
        "vehicle dimensions (W, H, L), class and light/heavy from a calibrated road camera",
@@ -711,8 +732,9 @@ const std::vector<Command>& commands() {
        "                   min_size [0.4,0.6,1.0], sigma_w/sigma_h/sigma_l [0.25], max_edge_px [4],\n"
        "                   light_heavy_rule [volume] (class), heavy_volume [45], decision [auto]\n"
        "                   (mean, last), border_margin_px [1]; blobs: foreground_threshold [0.5],\n"
-       "                   blob_closing [5], min_area [150], min_overlap [0.2], lost_memory [5],\n"
-       "                   confirm_frames [3]; and the background's",
+       "                   blob_closing [0: 5 px at focal length 900 px, scaled by f/900; 1 off],\n"
+       "                   min_area [0: 150 px at f = 900, scaled by (f/900)^2], min_overlap [0.2],\n"
+       "                   lost_memory [5], confirm_frames [3]; and the background's",
        run_vehicles},
       {"batch", "track many videos at once on Dask, locally or on a cluster (vtrack.batch)",
        "vtrack batch INPUTS... --out DIR [options]   (vtrack batch --help lists them)", run_batch},

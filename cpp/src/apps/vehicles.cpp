@@ -162,11 +162,22 @@ void validate(const VehicleBlobParams& p) {
   require(p.foreground_threshold > 0.0 && p.foreground_threshold <= 1.0, "foreground_threshold",
           p.foreground_threshold, "in (0, 1]");
   require(p.blob_closing >= 0 && p.blob_closing <= 255 && (p.blob_closing <= 1 || p.blob_closing % 2 == 1),
-          "blob_closing", p.blob_closing, "0, 1 or an odd number up to 255");
-  require(p.min_area >= 1, "min_area", p.min_area, ">= 1");
+          "blob_closing", p.blob_closing, "0 (auto), 1 (off) or an odd number up to 255");
+  require(p.min_area >= 0, "min_area", p.min_area, ">= 0 (0: auto)");
   require(p.min_overlap > 0.0 && p.min_overlap <= 1.0, "min_overlap", p.min_overlap, "in (0, 1]");
   require(p.lost_memory >= 0 && p.lost_memory <= 1000, "lost_memory", p.lost_memory, "in [0, 1000]");
   require(p.confirm_frames >= 1 && p.confirm_frames <= 1000, "confirm_frames", p.confirm_frames, "in [1, 1000]");
+}
+
+VehicleBlobParams blob_sizes_for(VehicleBlobParams p, double focal_px) {
+  constexpr double kReferenceFocal = 900.0, kClosing = 5.0, kMinArea = 150.0;
+  const double scale = focal_px / kReferenceFocal;
+  if (p.blob_closing == 0) {
+    const int side = static_cast<int>(std::lround(kClosing * scale));
+    p.blob_closing = std::clamp(side % 2 == 1 ? side : side + 1, 1, 255);
+  }
+  if (p.min_area == 0) p.min_area = std::max(1, static_cast<int>(std::lround(kMinArea * scale * scale)));
+  return p;
 }
 
 void validate(const VehiclePipelineParams& p) {
@@ -196,6 +207,12 @@ void apply_vehicle_config(VehiclePipelineParams& p, const Config& config) {
     }
   }
   if (config.seed) p.estimator.seed = *config.seed;
+}
+
+std::vector<PipelineSection> vehicle_sections(const VehiclePipelineParams& p) {
+  return {{"background", image::KdeBackgroundParams::table().values(p.background)},
+          {"blobs", VehicleBlobParams::table().values(p.blobs)},
+          {"estimator", filters::VehicleEstimatorParams::table().values(p.estimator)}};
 }
 
 namespace {
@@ -440,8 +457,10 @@ VehiclePipelineResult measure_vehicles(const std::string& video, const models::C
     writer = std::make_unique<AtomicVideoWriter>(render, source.fps() > 0 ? source.fps() : 25.0,
                                                  cv::Size(source.width(), source.height()));
   }
-  const cv::Mat kernel = params.blobs.blob_closing > 1
-                             ? cv::getStructuringElement(cv::MORPH_RECT, {params.blobs.blob_closing, params.blobs.blob_closing})
+  const Eigen::Matrix3d& K = estimator.camera().calibration().K;
+  const VehicleBlobParams blob = blob_sizes_for(params.blobs, std::sqrt(K(0, 0) * K(1, 1)));
+  const cv::Mat kernel = blob.blob_closing > 1
+                             ? cv::getStructuringElement(cv::MORPH_RECT, {blob.blob_closing, blob.blob_closing})
                              : cv::Mat();
   VehiclePipelineResult result;
   std::vector<BlobTrack> tracks;
@@ -451,10 +470,10 @@ VehiclePipelineResult measure_vehicles(const std::string& video, const models::C
     core::poll_interrupt();
     const long long k = ++result.frames;
     background.apply(frame, y);
-    image::foreground_mask(y, params.blobs.foreground_threshold, mask);
+    image::foreground_mask(y, blob.foreground_threshold, mask);
     if (!kernel.empty()) cv::morphologyEx(mask, mask, cv::MORPH_CLOSE, kernel);
-    const std::vector<Blob> blobs = find_blobs(mask, params.blobs.min_area, estimator.camera(), labels);
-    const auto matched = associate(tracks, blobs, k, params.blobs, estimator.camera(), next_id);
+    const std::vector<Blob> blobs = find_blobs(mask, blob.min_area, estimator.camera(), labels);
+    const auto matched = associate(tracks, blobs, k, blob, estimator.camera(), next_id);
     for (std::size_t b = 0; b < blobs.size(); ++b) {
       if (matched[b].merged) continue;  // two or more vehicles in one blob: no one's silhouette
       const BlobTrack& t = tracks[matched[b].track];
@@ -484,7 +503,7 @@ VehiclePipelineResult measure_vehicles(const std::string& video, const models::C
       writer->write(frame);
     }
     tracks.erase(std::remove_if(tracks.begin(), tracks.end(),
-                                [&](const BlobTrack& t) { return k - t.last_frame > params.blobs.lost_memory; }),
+                                [&](const BlobTrack& t) { return k - t.last_frame > blob.lost_memory; }),
                  tracks.end());
     if (progress) progress(k, source.expected_frame_count());
   }
@@ -499,7 +518,7 @@ VehiclePipelineResult measure_vehicles(const std::string& video, const models::C
     span[id].second = static_cast<int>(r.frame);
   }
   for (const auto& [id, n] : hits) {
-    if (n < params.blobs.confirm_frames) continue;
+    if (n < blob.confirm_frames) continue;
     filters::VehicleEstimate e;
     if (estimator.next_frame(id) > 1) e = estimator.estimate(id);
     e.vehicle_id = id;
@@ -508,7 +527,7 @@ VehiclePipelineResult measure_vehicles(const std::string& video, const models::C
     result.vehicles.push_back(e);
   }
   result.tracks.erase(std::remove_if(result.tracks.begin(), result.tracks.end(),
-                                     [&](const TrackRow& r) { return hits[static_cast<int>(r.id)] < params.blobs.confirm_frames; }),
+                                     [&](const TrackRow& r) { return hits[static_cast<int>(r.id)] < blob.confirm_frames; }),
                       result.tracks.end());
   if (writer) writer->commit();
   return result;

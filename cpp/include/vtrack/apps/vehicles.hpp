@@ -24,6 +24,7 @@
 
 #include "vtrack/apps/config.hpp"
 #include "vtrack/apps/mot_files.hpp"
+#include "vtrack/apps/pipeline.hpp"
 #include "vtrack/apps/video_source.hpp"
 #include "vtrack/filters/vehicle_dimensions.hpp"
 #include "vtrack/image/kde_background.hpp"
@@ -75,10 +76,16 @@ void write_vehicles_csv(const std::string& path, const std::vector<filters::Vehi
 // Vehicles side by side at the same speed for their whole passage stay one blob: one track, the
 // estimator fed a two-vehicle outline (a limitation; benchmarks/vehicles.py counts it). A track
 // matched in fewer than confirm_frames frames is not reported (a flicker of the background).
+//
+// Pixel sizes follow the camera: the closing's side and the smallest blob are given at the
+// reference focal length of 900 px (a 960x540 road camera) and scale with the camera's focal
+// length f (sqrt(fx fy) of K): an object at a given distance spans f / 900 times the pixels, so the
+// same physical gaps are closed and the same physical specks dropped at any resolution and lens.
+// Measured in benchmarks/vehicles.py (--video-scale): fixed pixel sizes lost vehicles at 0.5x.
 struct VehicleBlobParams {
   double foreground_threshold = 0.5;  // y < this is foreground (y = the KDE background likelihood)
-  int blob_closing = 5;               // pixels, 0/1 = off, else odd
-  int min_area = 150;                 // pixels
+  int blob_closing = 0;               // pixels: 0 = auto (5 at f = 900, odd), 1 = off, else odd
+  int min_area = 0;                   // pixels: 0 = auto (150 at f = 900, times (f / 900)^2)
   double min_overlap = 0.2;           // intersection over union to continue a track
   int lost_memory = 5;                // frames a track may go unmatched (it coasts through merges)
   int confirm_frames = 3;             // matched frames for a track to be a vehicle
@@ -86,6 +93,9 @@ struct VehicleBlobParams {
   static const core::ParameterTable<VehicleBlobParams>& table();
 };
 void validate(const VehicleBlobParams& params);
+// The blob parameters with the automatic pixel sizes (0) resolved for a camera of focal length
+// `focal_px` (above).
+VehicleBlobParams blob_sizes_for(VehicleBlobParams params, double focal_px);
 
 struct VehiclePipelineParams {
   image::KdeBackgroundParams background;
@@ -99,6 +109,9 @@ void set_vehicle_parameter(VehiclePipelineParams& params, const std::string& nam
 // Applies a config file's sections background, blobs, estimator and its top-level seed (the
 // estimator's); InvalidArgument for another section.
 void apply_vehicle_config(VehiclePipelineParams& params, const Config& config);
+// The config sections background, blobs and estimator with the values in `params` (what
+// `vtrack params --method vehicles` prints and --config reads back).
+std::vector<PipelineSection> vehicle_sections(const VehiclePipelineParams& params);
 
 struct VehiclePipelineResult {
   std::vector<filters::VehicleEstimate> vehicles;  // confirmed tracks, by id (ids from 1, in order of appearance)

@@ -33,8 +33,9 @@
 // quantised once per frame, over a region of interest that holds every box (HsvBinImage: OpenCV's
 // integer HSV_FULL and the binning in one pass, 16-bit bin indices, one thread); each box's
 // histogram then costs its own pixels only, never a color conversion, and usually less:
-// ColorModel::coefficients scores N boxes in one call and, unweighted, derives each box's counts
-// from a neighbouring box's (HistogramMethod::incremental). An integral histogram over the region
+// ColorModel::coefficients scores N boxes in one call and derives each box's counts (or kernel
+// weights, through per-bin coordinate moments) from a neighbouring box's
+// (HistogramMethod::incremental). An integral histogram over the region
 // (one summed-area table per bin) was measured too and dropped: with m = 256 bins its
 // construction costs more than counting every box directly (benchmarks/color_histogram.py's
 // docstring has the figures).
@@ -142,13 +143,15 @@ void color_log_likelihood(const double* rho, std::size_t n, double sigma, double
 // How ColorModel::coefficients counts the histograms of many boxes (benchmarks/color_histogram.py
 // measures them). Every method gives the same coefficients.
 enum class HistogramMethod {
-  // incremental for unweighted histograms, direct for kernel-weighted ones.
+  // incremental.
   automatic,
   // Each box's pixels, one increment (or kernel weight) per pixel.
   direct,
   // Boxes in Morton order of their corners; each box's counts are the previous box's minus the
   // pixels it no longer covers plus those it newly covers (up to 4 rectangles each), or a direct
-  // count when that is cheaper. Particles overlap a lot, so few pixels change. Unweighted only.
+  // count when that is cheaper. Particles overlap a lot, so few pixels change. Kernel-weighted
+  // histograms are updated the same way through per-bin moments of the pixels' coordinates (the
+  // kernel is a quadratic in them; color_histogram.cpp's PixelMoments).
   incremental,
 };
 
@@ -169,7 +172,7 @@ class ColorModel {
   // Bhattacharyya coefficients rho[p(box_i), q] (eq. 10) of n boxes, `boxes` holding n rows
   // (x, y, w, h) with `stride` doubles between rows (4 for an N x 4 array). The boxes, clipped to
   // the frame, must lie inside bins.roi(); bins must use this model's params. A box without
-  // pixels scores 0. `method` must not be incremental when params().kernel.
+  // pixels scores 0.
   void coefficients(const HsvBinImage& bins, const double* boxes, std::size_t n,
                     std::size_t stride, double* rho,
                     HistogramMethod method = HistogramMethod::automatic) const;
