@@ -135,7 +135,7 @@ struct GapRun {
 };
 
 GapRun run_through_a_gap(double occlusion_rate, int first_missed, int last_missed,
-                         filters::EstimatorParams estimator = {}) {
+                         filters::EstimatorParams estimator = {filters::LabelEstimator::map}) {
   const auto motion = models::LinearGaussianMotion::constant_velocity(2, 1.0, 1.0);
   const auto obs = models::LinearGaussianObservation::position_of_constant_velocity(
       2, Eigen::Matrix2d::Identity() * 4.0);

@@ -295,3 +295,75 @@ TEST(Glmb, FieldOfViewNeedsBoundsOfTheStateDimensionAndProbabilities) {
                 .find("outside_detection_probability"),
             std::string::npos);
 }
+
+namespace {
+
+// r_U(z_a) of the adaptive birth for one track and two detections (z_a near the track, z_b far
+// from everything), from the filter and in closed form. The track is born at scan 1 from a fixed
+// birth with p_D = 1 (so it has one child: detected), then at scan 2 p_D = 0.6. Per prior
+// hypothesis with the track (probability e1): detected by z_a (D = p_S p_D g_a / kappa), missed
+// (M = p_S (1 - p_D)) or dead (X = 1 - p_S); without it (1 - e1) z_a is clutter. Birth rows gate
+// neither detection, so they factor out of every marginal.
+struct ExplainedCase {
+  double filter_value, assigned, missed, q;
+};
+
+ExplainedCase explained_by_a_missed_track(bool missed_tracks) {
+  const auto motion = LinearGaussianMotion::constant_velocity(1, 1.0, 1.0);
+  const double R = 0.01, kappa = 0.5, p_s = 0.9, p_d = 0.6, r0 = 0.5;
+  const auto obs = LinearGaussianObservation::position_of_constant_velocity(
+      1, Eigen::MatrixXd::Constant(1, 1, R));
+  const Eigen::Vector2d m0(0.0, 10.0);
+  const Eigen::Matrix2d P0 = Eigen::Matrix2d::Identity() * 0.01;
+  GlmbParams params;
+  params.survival_probability = p_s;
+  params.detection_probability = 1.0;
+  params.clutter_intensity = kappa;
+  params.prune_threshold = 1e-300;
+  params.adaptive_birth.enabled = true;
+  params.adaptive_birth.missed_tracks = missed_tracks;
+  params.adaptive_birth.expected_births = 1.0;
+  params.adaptive_birth.max_existence = 0.5;
+  params.adaptive_birth.cov = Eigen::Matrix2d::Identity();
+  GaussianGlmbFilter glmb(motion, obs, {{r0, {m0, P0}}}, params);
+  glmb.step(Eigen::MatrixXd::Zero(1, 1));
+  glmb.set_detection_probability(p_d);
+  Eigen::MatrixXd z(1, 2);
+  z << 10.2, 50.0;
+  glmb.step(z);
+
+  auto normal = [](double x, double var) {
+    return std::exp(-0.5 * x * x / var) / std::sqrt(2.0 * std::acos(-1.0) * var);
+  };
+  // Scan 1: the track's existence and its Kalman posterior after z = 0.
+  const double A = r0 * normal(0.0, P0(0, 0) + R) / kappa;
+  const double e1 = A / (A + (1.0 - r0));
+  const double gain_p = P0(0, 0) / (P0(0, 0) + R);
+  Eigen::Vector2d m1 = m0 + Eigen::Vector2d(gain_p, P0(1, 0) / (P0(0, 0) + R)) * (0.0 - m0[0]);
+  Eigen::Matrix2d P1 = P0;
+  P1.row(0) *= (1.0 - gain_p);  // (I - K H) P0 with P0 diagonal: only the position row changes
+  // Scan 2: its predicted detection density and the hypotheses' marginals.
+  const Eigen::Vector2d mp = motion.F * m1;
+  const Eigen::Matrix2d Pp = motion.F * P1 * motion.F.transpose() + motion.Q;
+  const double g_a = normal(z(0, 0) - mp[0], Pp(0, 0) + R);
+  const double D = p_s * p_d * g_a / kappa, M = p_s * (1.0 - p_d), X = 1.0 - p_s;
+  const double total = e1 * (D + M + X) + (1.0 - e1);
+  const double q = p_d * g_a / (kappa + p_d * g_a);
+  EXPECT_EQ(glmb.summary().explained.size(), 2);
+  EXPECT_NEAR(glmb.summary().explained[1], 0.0, 1e-12);  // z_b: nothing near it
+  return {glmb.summary().explained[0], e1 * D / total, e1 * M / total, q};
+}
+
+}  // namespace
+
+TEST(Glmb, AdaptiveBirthCountsDetectionsThatAMissedTrackExplains) {
+  const ExplainedCase with = explained_by_a_missed_track(true);
+  const ExplainedCase without = explained_by_a_missed_track(false);
+  // The case is informative: the track is missed with fair probability and z_a is neither
+  // certainly its detection nor certainly clutter.
+  ASSERT_GT(with.missed, 0.05);
+  ASSERT_GT(with.q, 0.1);
+  ASSERT_LT(with.q, 0.9);
+  EXPECT_NEAR(without.filter_value, without.assigned, 1e-9);
+  EXPECT_NEAR(with.filter_value, with.assigned + with.missed * with.q, 1e-9);
+}

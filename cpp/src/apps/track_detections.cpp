@@ -58,6 +58,7 @@ const core::ParameterTable<BoxTrackerParams>& BoxTrackerParams::table() {
                                 .include(&P::occlusion)
                                 .include(&P::estimator)
                                 .add("max_births", &P::max_births)
+                                .add("birth_missed_tracks", &P::birth_missed_tracks)
                                 .include(&P::management)
                                 .add_choice("ranking", &P::ranking,
                                             {{"murty", filters::HypothesisRanking::murty},
@@ -173,6 +174,7 @@ filters::GlmbParams box_glmb_params(const BoxTrackerParams& p, int width, int he
   g.adaptive_birth.expected_births = p.birth_rate;
   g.adaptive_birth.max_existence = p.birth_max_existence;
   g.adaptive_birth.max_births = p.max_births;
+  g.adaptive_birth.missed_tracks = p.birth_missed_tracks;
   g.occlusion = p.occlusion;
   g.estimator = p.estimator;
   Eigen::VectorXd sd(6);

@@ -24,7 +24,8 @@ const core::ParameterTable<AdaptiveBirthParams>& AdaptiveBirthParams::table() {
   static const auto table = core::ParameterTable<P>()
                                 .add("adaptive_birth_rate", &P::expected_births)
                                 .add("adaptive_birth_max_existence", &P::max_existence)
-                                .add("adaptive_birth_max", &P::max_births);
+                                .add("adaptive_birth_max", &P::max_births)
+                                .add("adaptive_birth_missed_tracks", &P::missed_tracks);
   return table;
 }
 

@@ -167,6 +167,28 @@ void ParticleTracks::log_detection_likelihoods(const Candidate& c,
                                                const Eigen::Ref<const Eigen::MatrixXd>& z,
                                                double gate,
                                                Eigen::Ref<Eigen::RowVectorXd> out) const {
+  // eta = sum_p w_p g1(z|x_p) (eq. 2 under the particle density), p_D(x) / p_D included.
+  gated_log_likelihoods(c, c.predicted.log_weights(), c.log_visible, z, gate, out);
+}
+
+void ParticleTracks::log_missed_likelihoods(const Candidate& c,
+                                            const Eigen::Ref<const Eigen::MatrixXd>& z,
+                                            double gate, Eigen::Ref<Eigen::RowVectorXd> out) const {
+  // The missed branch's posterior weights, w_p g2(d|x_p) / eta_depth (missed() without
+  // resampling); where the track would be, not whether it is visible.
+  if (c.depth_log_ratio.size() == 0) {
+    gated_log_likelihoods(c, c.predicted.log_weights(), {}, z, gate, out);
+    return;
+  }
+  const Eigen::VectorXd log_w =
+      (c.predicted.log_weights() + c.depth_log_ratio).array() - c.log_eta_depth;
+  gated_log_likelihoods(c, log_w, {}, z, gate, out);
+}
+
+void ParticleTracks::gated_log_likelihoods(const Candidate& c, const Eigen::VectorXd& log_w,
+                                           const Eigen::VectorXd& log_extra,
+                                           const Eigen::Ref<const Eigen::MatrixXd>& z,
+                                           double gate, Eigen::Ref<Eigen::RowVectorXd> out) const {
   Eigen::VectorXd lg;
   for (Eigen::Index j = 0; j < z.cols(); ++j) {
     if (c.gate.mahalanobis_squared(z.col(j)) > gate) {
@@ -174,9 +196,8 @@ void ParticleTracks::log_detection_likelihoods(const Candidate& c,
       continue;
     }
     log_g1(c, z.col(j), lg);
-    if (c.log_visible.size() > 0) lg += c.log_visible;  // p_D(x) / p_D, see candidate()
-    // eta = sum_p w_p g1(z|x_p) (eq. 2 under the particle density).
-    out[j] = core::log_sum_exp(c.predicted.log_weights() + lg);
+    if (log_extra.size() > 0) lg += log_extra;
+    out[j] = core::log_sum_exp(log_w + lg);
   }
 }
 

@@ -78,15 +78,22 @@ void GlmbFilter<Tracks>::step(const Eigen::Ref<const Eigen::MatrixXd>& detection
     // the data contradict the model, so restart from "no targets" rather than produce NaN.
     tracks_.clear();
     hypotheses_.assign(1, {{}, 0.0});
-    summary_ = ScanSummary{Eigen::VectorXd::Zero(n_det), Eigen::VectorXd::Zero(n_det), 0.0, 0.0};
+    summary_ = ScanSummary{Eigen::VectorXd::Zero(n_det), Eigen::VectorXd::Zero(n_det), 0.0, 0.0,
+                           Eigen::VectorXd::Zero(n_det)};
     propose_adaptive_births(detections, Eigen::VectorXd::Zero(n_det), weight);
     estimate();
     return;
   }
   std::vector<Hypothesis> updated = normalise_and_prune(posterior);
   summarise(updated, factors, posterior, n_det);
-  // r_U(z_j): the posterior probability that detection j was assigned to a track.
-  propose_adaptive_births(detections, summary_.to_track + summary_.to_birth, weight);
+  // r_U(z_j): the posterior probability that detection j was assigned to a track, or (with
+  // missed_tracks) lies on a track that was missed.
+  Eigen::VectorXd explained = summary_.to_track + summary_.to_birth;
+  if (params_.adaptive_birth.enabled && params_.adaptive_birth.missed_tracks) {
+    explained += missed_explanations(updated, factors, posterior, detections);
+  }
+  propose_adaptive_births(detections, explained, weight);
+  summary_.explained = params_.adaptive_birth.enabled ? explained : Eigen::VectorXd::Zero(n_det);
   keep_used_tracks(std::move(updated), posterior);
   estimate();
 }
@@ -108,15 +115,16 @@ typename GlmbFilter<Tracks>::ScanFactors GlmbFilter<Tracks>::score_candidates(
   f.log_exists.resize(n_rows);
   f.log_absent.resize(n_rows);
   f.log_missed.resize(n_rows);
+  f.log_pd.resize(n_rows);
   f.missed_undetectable.resize(n_rows);
   f.missed_detectable.resize(n_rows);
   f.log_detected.resize(n_rows, n_det);
   Eigen::RowVectorXd log_g(n_det);
   const FieldOfView& fov = params_.field_of_view;
-  const Eigen::RowVectorXd log_kappa =
-      input.log_clutter.size() > 0
-          ? Eigen::RowVectorXd(input.log_clutter.transpose())
-          : Eigen::RowVectorXd::Constant(n_det, std::log(params_.clutter_intensity));
+  f.log_kappa = input.log_clutter.size() > 0
+                    ? Eigen::RowVectorXd(input.log_clutter.transpose())
+                    : Eigen::RowVectorXd::Constant(n_det, std::log(params_.clutter_intensity));
+  const Eigen::RowVectorXd& log_kappa = f.log_kappa;
   const double stay_hidden = 1.0 - 1.0 / params_.occlusion.length;
   for (int r = 0; r < n_rows; ++r) {
     const bool is_birth = r >= n_prior;
@@ -145,6 +153,7 @@ typename GlmbFilter<Tracks>::ScanFactors GlmbFilter<Tracks>::score_candidates(
     f.missed_undetectable[r] = miss > 0.0 ? o / miss : 0.0;
     f.missed_detectable[r] = is_birth || !detectable ? -1.0 : 1.0 - f.missed_undetectable[r];
     f.candidates.push_back(tracks_model_.candidate(std::move(predicted), observation_, is_birth));
+    f.log_pd[r] = std::log(p_d);
     f.log_exists[r] = std::log(p_exist);
     f.log_absent[r] = std::log1p(-p_exist);
     f.log_missed[r] = std::log(miss) + tracks_model_.log_missed_likelihood(f.candidates.back());
@@ -345,7 +354,7 @@ void GlmbFilter<Tracks>::summarise(const std::vector<Hypothesis>& hypotheses,
                                    const ScanFactors& factors, const Posterior& posterior,
                                    Eigen::Index n_det) {
   const int n_prior = static_cast<int>(tracks_.size());
-  ScanSummary s{Eigen::VectorXd::Zero(n_det), Eigen::VectorXd::Zero(n_det), 0.0, 0.0};
+  ScanSummary s{Eigen::VectorXd::Zero(n_det), Eigen::VectorXd::Zero(n_det), 0.0, 0.0, {}};
   for (const auto& h : hypotheses) {
     const double w = std::exp(h.log_weight);
     for (int t : h.tracks) {
@@ -363,6 +372,63 @@ void GlmbFilter<Tracks>::summarise(const std::vector<Hypothesis>& hypotheses,
     }
   }
   summary_ = std::move(s);
+}
+
+template <class Tracks>
+Eigen::VectorXd GlmbFilter<Tracks>::missed_explanations(
+    const std::vector<Hypothesis>& hypotheses, const ScanFactors& factors,
+    const Posterior& posterior, const Eigen::Ref<const Eigen::MatrixXd>& detections) {
+  const Eigen::Index n_det = detections.cols();
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(n_det);
+  if (n_det == 0) return out;
+  // Per missed child row, log(1 - q_tj) for the detections in its gate (AdaptiveBirthParams):
+  // log(1 - q) = -log(1 + L), L = p_D g(z_j | p_t) / kappa(z_j). Computed once per row.
+  std::map<int, std::vector<std::pair<int, double>>> free_of_row;
+  Eigen::RowVectorXd log_g(n_det);
+  auto row_terms = [&](int row) -> const std::vector<std::pair<int, double>>& {
+    auto [it, inserted] = free_of_row.try_emplace(row);
+    if (!inserted) return it->second;
+    tracks_model_.log_missed_likelihoods(factors.candidates[static_cast<std::size_t>(row)],
+                                         detections, params_.gate_threshold, log_g);
+    for (Eigen::Index j = 0; j < n_det; ++j) {
+      if (!(log_g[j] > -detail::kInfinity)) continue;
+      const double log_l = factors.log_pd[row] + log_g[j] - factors.log_kappa[j];
+      // -log(1 + e^log_l), stable for either sign.
+      const double log_free = log_l > 0.0 ? -(log_l + std::log1p(std::exp(-log_l)))
+                                          : -std::log1p(std::exp(log_l));
+      it->second.emplace_back(static_cast<int>(j), log_free);
+    }
+    return it->second;
+  };
+  // Scratch per hypothesis: log prod (1 - q) per detection, the detections touched, and the
+  // detections the hypothesis assigns.
+  Eigen::VectorXd log_free = Eigen::VectorXd::Zero(n_det);
+  std::vector<char> assigned(static_cast<std::size_t>(n_det), 0);
+  std::vector<int> touched;
+  for (const auto& h : hypotheses) {
+    touched.clear();
+    for (int t : h.tracks) {
+      const int j = posterior.child_detection[static_cast<std::size_t>(t)];
+      if (j >= 0) assigned[static_cast<std::size_t>(j)] = 1;
+    }
+    for (int t : h.tracks) {
+      if (posterior.child_detection[static_cast<std::size_t>(t)] >= 0) continue;
+      for (const auto& [j, lf] : row_terms(posterior.child_row[static_cast<std::size_t>(t)])) {
+        if (log_free[j] == 0.0) touched.push_back(j);
+        log_free[j] += lf;
+      }
+    }
+    const double w = std::exp(h.log_weight);
+    for (int j : touched) {
+      if (!assigned[static_cast<std::size_t>(j)]) out[j] += w * -std::expm1(log_free[j]);
+      log_free[j] = 0.0;
+    }
+    for (int t : h.tracks) {
+      const int j = posterior.child_detection[static_cast<std::size_t>(t)];
+      if (j >= 0) assigned[static_cast<std::size_t>(j)] = 0;
+    }
+  }
+  return out;
 }
 
 template <class Tracks>

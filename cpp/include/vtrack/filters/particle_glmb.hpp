@@ -58,8 +58,9 @@
 // 0.3 m = 3 sigma of the detections' depth noise.
 //
 // Births take the depth factor too, as eq. (8)'s psi applies to every label
-// (ParticleParams::depth_for_births; measured: with the mask it makes no difference to OSPA or
-// cardinality and slightly fewer label switches than births scored by (1 - p_D) alone).
+// (ParticleParams::depth_for_births). Scoring them by (1 - p_D) alone was measured as an option
+// (benchmarks/rgbd_switching.py's docstring): fewer label switches on the seeds it was chosen on,
+// more on the ten seeds after them, so the default stays the paper's.
 
 // Gating uses the moment-matched Gaussian of the predicted particles: a detection enters a row
 // only if its squared Mahalanobis distance under N(H m, H P H^T + Sigma) is within the gate.
@@ -85,7 +86,8 @@ struct ParticleParams {
   int n_particles = 500;  // particles per track, <= core::kMaxParticles (births sampled with as many)
   double resample_threshold = 0.5;  // resample when N_eff < resample_threshold * n_particles
   // Whether birth rows take the depth factor in their missed branch too (eq. 8's psi applies to
-  // every label); false scores a birth's missed branch by (1 - p_D) alone.
+  // every label); false scores a birth's missed branch by (1 - p_D) alone (a birth its detection
+  // did not follow then cannot survive on the depth pixels of a person another track carries).
   bool depth_for_births = true;
   // Whether the footprints T(z_j) of this scan's detections are blanked (set to 0) in the depth
   // image before the missed branches are scored. See the header comment; false = eq. (4) on the
@@ -150,6 +152,11 @@ class ParticleTracks {
                       bool is_birth);
   void log_detection_likelihoods(const Candidate& c, const Eigen::Ref<const Eigen::MatrixXd>& z,
                                  double gate, Eigen::Ref<Eigen::RowVectorXd> out) const;
+  // log g1(z_j | missed density) for every detection j (-inf outside the gate): eq. (2) under the
+  // particles reweighted by the depth likelihood (the density a missed track carries on with),
+  // for the adaptive birth's r_U (AdaptiveBirthParams::missed_tracks).
+  void log_missed_likelihoods(const Candidate& c, const Eigen::Ref<const Eigen::MatrixXd>& z,
+                              double gate, Eigen::Ref<Eigen::RowVectorXd> out) const;
   double log_missed_likelihood(const Candidate& c) const { return c.log_eta_depth; }
   Density detected(const Candidate& c, const Eigen::Ref<const Eigen::VectorXd>& z);
   Density missed(const Candidate& c);
@@ -160,6 +167,12 @@ class ParticleTracks {
   // log g1(z | x_p) for every particle (eq. 2), from the candidate's H x_p.
   void log_g1(const Candidate& c, const Eigen::Ref<const Eigen::VectorXd>& z,
               Eigen::VectorXd& out) const;
+  // log sum_p exp(log_w_p + log_extra_p) g1(z_j|x_p) per detection (-inf outside the gate of the
+  // moment-matched Gaussian); log_extra may be empty.
+  void gated_log_likelihoods(const Candidate& c, const Eigen::VectorXd& log_w,
+                             const Eigen::VectorXd& log_extra,
+                             const Eigen::Ref<const Eigen::MatrixXd>& z, double gate,
+                             Eigen::Ref<Eigen::RowVectorXd> out) const;
   // Adds log_lik to the weights, renormalises, and resamples when N_eff is low.
   Density reweight(const Density& prior, const Eigen::VectorXd& log_lik);
   // n x d standard normal draws, filled particle by particle (as the d x n layout this filter had
