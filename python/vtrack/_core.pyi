@@ -362,7 +362,7 @@ class MultiBernoulliTracker:
         *,
         delta_f: float = 0.1,
         delta_b: float = 0.002,
-        delta_b_reference: Literal["person", "image"] = 'image',
+        delta_b_reference: Literal["person", "image", "row"] = 'image',
         closing_size: int = 0,
         closing_ratio: float = 0.06,
         survival_probability: float = 0.99,

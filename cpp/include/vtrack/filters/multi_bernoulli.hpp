@@ -235,12 +235,16 @@ class MultiBernoulliFilter {
   void resample();
   // Clamps sizes to the size prior's range times `scale` (the row's, see size_by_row).
   void clamp_sizes(BoxParticles::States& states, float scale) const;
-  // h(foot_row) / h with size_by_row and a supported line, else 1.
+  // h(foot_row) / h with a fitted, supported line, else 1 (line_scale); the same with
+  // size_by_row only (row_scale), which the size prior uses.
+  double line_scale(double foot_row) const;
   double row_scale(double foot_row) const;
+  bool prior_by_row() const { return params_.size_by_row && !line_scale_.empty(); }
   // The same for a person whose box is centred on row cy: at the foot row cy + h(foot) / 2 (one
   // fixed-point step from the mean height). Not at the box's own bottom: the filter's box is the
   // dark core of a silhouette, shorter than the person, and a scale taken at its bottom would
   // shrink the size range, so the box, so the scale, frame after frame.
+  double line_centre_scale(double cy) const;
   double centre_row_scale(double cy) const;
   // Observes y's foreground and updates size_ (and the likelihood's person size and the random
   // walk's sigmas) when learning.
@@ -260,8 +264,9 @@ class MultiBernoulliFilter {
   models::TbdLikelihood likelihood_;
   PersonHeight person_height_;
   PersonSizePrior size_;
-  // [row]: h(row) / h (size_by_row with a supported line; empty otherwise).
-  std::vector<double> row_scale_;
+  // [foot row]: h(row) / h (a line fitted for size_by_row or the "row" likelihood reference and
+  // supported by the data; empty otherwise).
+  std::vector<double> line_scale_;
   TrackManager management_;
   std::vector<BernoulliComponent> components_;
   Tracks tracks_;

@@ -79,6 +79,12 @@ class PersonHeight {
   }
   // Whether height_at_foot follows the row.
   bool by_row() const { return line_.by_row; }
+  // The smallest person height the line was fitted on (its value at the top row band where
+  // people were seen, times size_from_foreground); 0 unless by_row. height_at_foot goes down
+  // to half of it above those rows.
+  double smallest_seen() const {
+    return line_.by_row ? 2.0 * params_.size_from_foreground * line_.min_height : 0.0;
+  }
   // Whether observe also fits the line (off by default: it costs a pass over the row bands'
   // histograms per frame, which only size_by_row uses).
   void set_fit_line(bool on) { fit_line_ = on; }
