@@ -269,9 +269,9 @@ std::array<double, 3> best_box_fractions(const TbdLikelihood& lik, double cx, do
 // The "row" reference (delta_b): people 80, 160 and 320 px tall, each centred on the row where the
 // person height line puts a person of their size (h = 0.8 row, a(row) = 0.4 h(row)^2), all of one
 // shape. The best box covers the same fraction of each of them with "row", because k =
-// m_x delta_F / (a delta_B) is the same for each; with eq. (20) as printed ("image", delta_B set
-// so that the middle person gets the same k), k is 16 times larger for the near person than for
-// the far one, and the best box takes more of the border the nearer the person.
+// m_x a delta_F / (a(row) m delta_B) is the same for each; with eq. (20) as printed ("image", the
+// same delta_B, which the middle person's k equals), k is 16 times larger for the near person
+// than for the far one, and the best box takes more of the border the nearer the person.
 TEST(TbdLikelihood, RowReferenceFitsPeopleOfEverySizeAlike) {
   const std::array<double, 3> heights = {80.0, 160.0, 320.0};
   cv::Mat y(600, 560, CV_32F, cv::Scalar(1.0f));
@@ -284,17 +284,22 @@ TEST(TbdLikelihood, RowReferenceFitsPeopleOfEverySizeAlike) {
     const double hr = 0.8 * std::max(r + 0.5, 1.0);
     areas[std::size_t(r)] = 0.4 * hr * hr;
   }
-  TbdLikelihoodParams row = printed();
-  row.delta_b_reference = TbdLikelihoodParams::DeltaBReference::row;
-  row.delta_b = 0.35;
-  TbdLikelihood by_row(row);
-  by_row.set_person_size(0.4 * 160, 160);
-  by_row.set_row_areas(areas);
-  by_row.set_image(y);
+  // delta_B such that a person-sized box earns (1 - ybar) / 0.35 at the middle person's size.
   TbdLikelihoodParams image = printed();
   image.delta_b = 0.35 * 0.4 * 160 * 160 / double(y.total());
   TbdLikelihood printed_lik(image);
   printed_lik.set_image(y);
+  TbdLikelihoodParams row = image;
+  row.delta_b_reference = TbdLikelihoodParams::DeltaBReference::row;
+  TbdLikelihood by_row(row);
+  by_row.set_person_size(0.4 * 160, 160);
+  by_row.set_image(y);  // no row areas yet: every weight is 1, eq. (20) as printed
+  for (const auto& b : std::vector<std::array<float, 4>>{{40, 60, 40, 90}, {150, 100, 70, 200}}) {
+    EXPECT_NEAR(by_row.log_likelihood(b[0], b[1], b[2], b[3]),
+                printed_lik.log_likelihood(b[0], b[1], b[2], b[3]), 1e-4);
+  }
+  by_row.set_row_areas(areas);
+  by_row.set_image(y);
   std::array<std::array<double, 3>, 3> fr_row{}, fr_image{};
   for (int k = 0; k < 3; ++k) {
     const double h = heights[k], w = 0.4 * h, cy = h / 0.8;

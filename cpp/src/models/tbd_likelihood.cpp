@@ -113,11 +113,12 @@ void TbdLikelihood::set_image(const cv::Mat& y) {
   // (a max/min over a replicated border equals one over the pixels inside), single-threaded
   // because the tracker runs one per camera.
   using Reference = TbdLikelihoodParams::DeltaBReference;
-  const bool person = params_.delta_b_reference != Reference::image;
-  if ((person || (params_.closing_size == 0 && params_.closing_ratio > 0.0)) &&
+  const bool person = params_.delta_b_reference == Reference::person;
+  if ((params_.delta_b_reference != Reference::image ||
+       (params_.closing_size == 0 && params_.closing_ratio > 0.0)) &&
       !has_person_size()) {
-    throw InvalidArgument("the likelihood's delta_b_reference 'person' and closing_ratio need the "
-                          "person size (set_person_size) before the first image");
+    throw InvalidArgument("the likelihood's delta_b_reference 'person' or 'row' and closing_ratio "
+                          "need the person size (set_person_size) before the first image");
   }
   image::close_square(y, closed_, closing_pixels(), 1, &closing_workspace_);
   integral_.compute(closed_);
@@ -128,17 +129,17 @@ void TbdLikelihood::set_image(const cv::Mat& y) {
 }
 
 void TbdLikelihood::set_row_reward() {
-  // Each pixel's reward (1 - y_i) / (a(row_i) delta_B) (see delta_b: eq. 14's weighted average),
-  // summed over boxes by a second integral image.
+  // Each pixel's reward (1 - y_i) a / (a(row_i) m delta_B) (see delta_b: eq. 14's weighted
+  // average), summed over boxes by a second integral image.
   if (!row_areas_.empty() && row_areas_.size() != static_cast<std::size_t>(closed_.rows)) {
     throw InvalidArgument("the likelihood's row areas cover " + std::to_string(row_areas_.size()) +
                           " rows, the image has " + std::to_string(closed_.rows));
   }
   reward_.create(closed_.size(), CV_32FC1);
   for (int r = 0; r < closed_.rows; ++r) {
-    const float c = row_areas_.empty()
-                        ? static_cast<float>(inv_m_delta_b_)
-                        : static_cast<float>(1.0 / (row_areas_[std::size_t(r)] * params_.delta_b));
+    const double weight =
+        row_areas_.empty() ? 1.0 : person_width_ * person_height_ / row_areas_[std::size_t(r)];
+    const auto c = static_cast<float>(weight * inv_m_delta_b_);
     const float* in = closed_.ptr<float>(r);
     float* out = reward_.ptr<float>(r);
     for (int col = 0; col < closed_.cols; ++col) out[col] = c * (1.0f - in[col]);
@@ -188,7 +189,7 @@ double TbdLikelihood::log_likelihood(float x, float y, float w, float h,
   const double sum = explained_sum(r, explained);
   const double ybar = sum / m_x;  // eq. (11)
   // log of eq. (20): m_x (1 - ybar) / (m delta_B) + log zeta_F - ybar / delta_F, with
-  // m_x (1 - ybar) = m_x - sum; "row": sum_i (1 - y_i) / (a(row_i) delta_B) (see delta_b).
+  // m_x (1 - ybar) = m_x - sum; "row": sum_i (1 - y_i) a / a(row_i) in place of m_x - sum.
   const double reward =
       params_.delta_b_reference == TbdLikelihoodParams::DeltaBReference::row
           ? row_reward(r, explained)

@@ -70,21 +70,22 @@ struct TbdLikelihoodParams {
   // PETS09's share, and cleaner y) "person" 0.35 gave 0.618 / 0.803 against 0.938 / 0.968 with
   // "image" 2e-3: a person-relative reward needs another value there, so it is not the default.
   //
-  // With delta_b_reference "row", each pixel i's unit of 1 - y_i earns 1 / (a(row_i) delta_B),
-  // a(row) the area of the person the prior expects centred on that row (the tracker's person
-  // height line by foot row, set_row_areas; the constant a of "person" until the line is learnt
-  // and supported): a person-sized box earns about (1 - ybar) / delta_B near and far. Why: with
-  // "image" or "person" the reward grows with the box's pixel count m_x while the penalty
-  // -ybar / delta_F does not, so the best box takes a strip of mean y_s iff
-  // y_s < (k + ybar) / (1 + k) with k = m_x delta_F / (m delta_B): 0.14 for a 60 px PETS09
-  // person (boxes shrink to the dark core) and 0.73 for a 130 px one (boxes reach over grey
-  // background), so one box calibration cannot fit both. With "row", k = m_x delta_F /
-  // (a(row) delta_B) is the same for every person-sized box. It is eq. (14)'s "weighted
-  // average" with the pixel weights 1 / a(row_i) (delta_B absorbing their sum): the weights do
-  // not depend on the state X, so eqs. (15)-(20) go through unchanged with m_x (1 - ybar) / m
-  // replaced by sum_{i in T(x)} (1 - y_i) / a(row_i), and f(y) still cancels. A normaliser taken at each
-  // box's own row would instead make g_B depend on X beyond eq. (13)'s fill, and its gradient in
-  // the box's row pulls every box towards smaller a (up the image).
+  // With delta_b_reference "row", eq. (20) as printed ("image", the same delta_B) with each
+  // pixel i's unit of 1 - y_i weighted by a / a(row_i): a the prior's mean person area
+  // (set_person_size) and a(row) the area of the person the prior expects centred on that row
+  // (the tracker's person height line by foot row, set_row_areas; without one every weight is 1,
+  // i.e. exactly "image"). Why: with "image" or "person" the reward grows with the box's pixel
+  // count m_x while the penalty -ybar / delta_F does not, so the best box takes a strip of mean
+  // y_s iff y_s < (k + ybar) / (1 + k) with k = m_x delta_F / (m delta_B): 0.14 for a 60 px
+  // PETS09 person (boxes shrink to the dark core) and 0.73 for a 130 px one (boxes reach over
+  // grey background), so one box calibration cannot fit both. With "row", k = m_x a delta_F /
+  // (a(row) m delta_B) is the same for every person-sized box, the value "image" gives the mean
+  // person. It is eq. (14)'s "weighted average" with the pixel weights 1 / a(row_i) (delta_B
+  // absorbing their scale): the weights do not depend on the state X, so eqs. (15)-(20) go
+  // through unchanged with m_x (1 - ybar) replaced by sum_{i in T(x)} (1 - y_i) a / a(row_i),
+  // and f(y) still cancels. (A normaliser taken at each box's own row instead would make g_B
+  // depend on X beyond eq. (13)'s fill, and its gradient in the box's row would pull boxes up the
+  // image, towards smaller a.)
   double delta_b = 2e-3;
   enum class DeltaBReference { image, person, row };
   DeltaBReference delta_b_reference = DeltaBReference::image;
