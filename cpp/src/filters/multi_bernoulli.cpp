@@ -402,9 +402,9 @@ void MultiBernoulliFilter::add_adaptive_births() {
     const double f = row_scale(foot);
     return Grid{std::max(1, int(std::lround(scale * f * size_.width))),
                 std::max(1, int(std::lround(scale * f * size_.height))),
-                !prior_by_row() ? size_.birth_stride
-                                   : std::max(1, int(std::lround(params_.adaptive_birth_stride *
-                                                                 f * size_.height)))};
+                prior_by_row() ? std::max(1, int(std::lround(params_.adaptive_birth_stride * f *
+                                                             size_.height)))
+                               : size_.birth_stride};
   };
   for (const double scale : {0.85, 1.0, 1.3}) {
     const Grid first = grid_at(scale, 0);
