@@ -271,6 +271,7 @@ class GlmbTracker:
         densities: Literal["gaussian", "particles"] = 'gaussian',
         n_particles: int = 500,
         resample_threshold: float = 0.5,
+        regularise: bool = True,
         depth_for_births: bool = True,
         mask_detections: bool = True,
         occlusion_margin: float = 0.3,
