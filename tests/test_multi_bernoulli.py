@@ -44,6 +44,7 @@ def test_defaults_and_params():
     ({"sigma_wh": -1}, ValueError, "sigma_wh"),
     ({"delta_b": 0}, ValueError, "delta_b"),
     ({"delta_b_reference": "screen"}, ValueError, "screen"),
+    ({"delta_b_reference": "row", "size_by_row": False}, ValueError, "size_by_row"),
     ({"sigma_xy": "2"}, TypeError, "sigma_xy"),
     ({"sigma_x": 5.0}, TypeError, "sigma_xy"),  # the former pixel name: did you mean
     ({"height_mean": -1.0}, ValueError, "height_mean"),

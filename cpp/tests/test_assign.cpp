@@ -268,6 +268,148 @@ TEST(Murty, EmptyProblemHasOneAssignment) {
   EXPECT_EQ(r.assignments.cols(), 0);
 }
 
+// --- Pooled rows --------------------------------------------------------------------------------
+
+namespace {
+
+// A pool row: its finite shared entries (column -> cost) and its private costs.
+struct PoolRow {
+  std::map<int, double> shared;
+  std::vector<double> own;
+};
+
+// The dense matrix PooledMurty::rank documents for the problem of pool rows `rows`, and each of
+// its columns' choice code (shared column c, or -1 - p).
+Eigen::MatrixXd dense_problem(const std::vector<PoolRow>& pool, const std::vector<int>& rows,
+                              int n_private, std::vector<int>& codes) {
+  std::set<int> taken;
+  for (int q : rows) {
+    for (const auto& [c, x] : pool[q].shared) taken.insert(c);
+  }
+  codes.assign(taken.begin(), taken.end());
+  for (int p = 0; p < n_private; ++p) codes.insert(codes.end(), rows.size(), -1 - p);
+  const int n = static_cast<int>(rows.size()), t = static_cast<int>(taken.size());
+  Eigen::MatrixXd c = Eigen::MatrixXd::Constant(n, static_cast<Eigen::Index>(codes.size()), kInf);
+  for (int i = 0; i < n; ++i) {
+    const PoolRow& row = pool[rows[i]];
+    for (int j = 0; j < t; ++j) {
+      const auto found = row.shared.find(codes[j]);
+      if (found != row.shared.end()) c(i, j) = found->second;
+    }
+    for (int p = 0; p < n_private; ++p) c(i, t + p * n + i) = row.own[p];
+  }
+  return c;
+}
+
+// Random pool rows over `shared` columns: each column finite with probability `density`, integer
+// costs (ties) or reals; private costs +inf with probability 0.15.
+std::vector<PoolRow> random_pool(core::Rng& rng, int size, int shared, int n_private,
+                                 double density, bool integer) {
+  std::vector<PoolRow> pool(static_cast<std::size_t>(size));
+  for (auto& row : pool) {
+    for (int c = 0; c < shared; ++c) {
+      if (rng.uniform() < density) {
+        row.shared[c] = integer ? std::floor(10.0 * rng.uniform()) - 4.0 : 20.0 * rng.uniform() - 10.0;
+      }
+    }
+    for (int p = 0; p < n_private; ++p) {
+      const double x = integer ? std::floor(6.0 * rng.uniform()) : 10.0 * rng.uniform();
+      row.own.push_back(rng.uniform() < 0.15 ? kInf : x);
+    }
+  }
+  return pool;
+}
+
+void load(PooledMurty& ranking, const std::vector<PoolRow>& pool, int shared, int n_private) {
+  ranking.reset(shared, n_private);
+  for (const PoolRow& row : pool) {
+    std::vector<int> cols;
+    std::vector<double> costs;
+    for (const auto& [c, x] : row.shared) {
+      cols.push_back(c);
+      costs.push_back(x);
+    }
+    ranking.add_row(cols.data(), costs.data(), static_cast<int>(cols.size()), row.own.data());
+  }
+}
+
+}  // namespace
+
+// The pool's ranking of a problem is murty() of its dense matrix, assignment for assignment, in
+// the same order (equal integer costs included), however the problems of one pool share rows and
+// clusters and in whatever order they ask for more of a cluster's ranking; and murty() itself is
+// the brute force's (expect_matches_brute_force).
+TEST(PooledMurty, IsMurtyOfTheDenseMatrixOfEveryProblem) {
+  core::Rng rng(77);
+  PooledMurty ranking;
+  int compared = 0, clustered = 0;
+  for (int trial = 0; trial < 120; ++trial) {
+    const int shared = static_cast<int>(rng.uniform() * 7), n_private = trial % 3;
+    const int size = 1 + static_cast<int>(rng.uniform() * 9);
+    const auto pool = random_pool(rng, size, shared, n_private, 0.1 + 0.3 * rng.uniform(),
+                                  trial % 2 == 0);
+    load(ranking, pool, shared, n_private);
+    ASSERT_EQ(ranking.rows(), size);
+    for (int problem = 0; problem < 8; ++problem) {
+      std::vector<int> rows;
+      for (int q = 0; q < size; ++q) {
+        if (rng.uniform() < 0.6) rows.push_back(q);
+      }
+      if (problem % 3 == 2) std::reverse(rows.begin(), rows.end());  // any row order
+      std::vector<int> codes;
+      const Eigen::MatrixXd dense = dense_problem(pool, rows, n_private, codes);
+      const int k = 1 + static_cast<int>(rng.uniform() * 30);
+      if (dense.rows() > dense.cols()) continue;  // murty() rejects it; the pool gives none
+      const auto want = murty(dense, k);
+      const auto& got = ranking.rank(rows, k);
+      ASSERT_EQ(got.costs.size(), want.costs.size()) << dense;
+      ASSERT_EQ(got.assignments.cols(), static_cast<Eigen::Index>(rows.size()));
+      for (Eigen::Index s = 0; s < want.costs.size(); ++s) {
+        EXPECT_EQ(got.costs[s], want.costs[s]) << "rank " << s << "\n" << dense;
+        for (Eigen::Index i = 0; i < dense.rows(); ++i) {
+          EXPECT_EQ(got.assignments(s, i), codes[static_cast<std::size_t>(want.assignments(s, i))])
+              << "rank " << s << " row " << i << "\n" << dense;
+        }
+      }
+      if (problem == 0 && dense.rows() <= 7) expect_matches_brute_force(dense, k);
+      ++compared;
+      clustered += want.costs.size() > 1;
+    }
+  }
+  EXPECT_GT(compared, 600);
+  EXPECT_GT(clustered, 300);
+}
+
+TEST(PooledMurty, EmptyInfeasibleAndBadInput) {
+  PooledMurty ranking;
+  ranking.reset(2, 1);
+  const int cols[] = {0, 1};
+  const double costs[] = {1.0, 2.0}, own[] = {kInf}, own_finite[] = {3.0};
+  ranking.add_row(cols, costs, 1, own);            // row 0: column 0 only
+  ranking.add_row(cols, costs, 1, own);            // row 1: column 0 only
+  ranking.add_row(nullptr, nullptr, 0, own);       // row 2: nothing finite
+  ranking.add_row(cols + 1, costs + 1, 1, own_finite);  // row 3: column 1 or its own
+  const auto& none = ranking.rank({}, 3);
+  ASSERT_EQ(none.costs.size(), 1);  // the empty assignment
+  EXPECT_EQ(none.costs[0], 0.0);
+  EXPECT_EQ(ranking.rank({0, 1}, 3).costs.size(), 0);  // two rows, one column
+  EXPECT_EQ(ranking.rank({2, 3}, 3).costs.size(), 0);  // a row without a finite entry
+  const auto& two = ranking.rank({0, 3}, 5);
+  ASSERT_EQ(two.costs.size(), 2);
+  EXPECT_EQ(two.costs[0], 1.0 + 2.0);
+  EXPECT_EQ(two.assignments(1, 1), -1);  // row 3's private column
+  EXPECT_THROW(ranking.rank({0, 0}, 1), InvalidArgument);
+  EXPECT_THROW(ranking.rank({4}, 1), InvalidArgument);
+  EXPECT_THROW(ranking.rank({0}, 0), InvalidArgument);
+  const double nan[] = {std::numeric_limits<double>::quiet_NaN()};
+  EXPECT_THROW(ranking.add_row(cols, nan, 1, own), InvalidArgument);
+  const double minus_inf[] = {-kInf};
+  EXPECT_THROW(ranking.add_row(nullptr, nullptr, 0, minus_inf), InvalidArgument);
+  const int decreasing[] = {1, 0};
+  EXPECT_THROW(ranking.add_row(decreasing, costs, 2, own), InvalidArgument);
+  EXPECT_THROW(ranking.reset(-1, 0), InvalidArgument);
+}
+
 // --- Gibbs sampler ---------------------------------------------------------------------------
 
 namespace {

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -8,6 +9,7 @@
 
 #include "vtrack/core/errors.hpp"
 #include "vtrack/core/gaussian.hpp"
+#include "vtrack/core/random.hpp"
 #include "vtrack/filters/detector_learning.hpp"
 #include "vtrack/filters/glmb.hpp"
 #include "distributions.hpp"
@@ -100,6 +102,33 @@ TEST(DetectorLearning, ScoreModelRatioIsOneWhenScoresCarryNoInformation) {
     model.update(scores, u, p_target);
   }
   EXPECT_TRUE((model.log_ratio(model.transform(scores)).array() == 0.0).all());
+}
+
+TEST(DetectorLearning, ScoreModelWindowKeepsTheLastScoresOnceFull) {
+  // A window of 50 fed scans of 7 scores (repeated values, ties included) wraps around many
+  // times: u must be the mid-rank quantile among exactly the last 50 scores, counted directly.
+  const int window = 50;
+  ScoreModel model(window, 10.0, 100.0);
+  core::Rng rng(5);
+  std::vector<double> seen;
+  const Eigen::VectorXd probe = (Eigen::VectorXd(5) << 0.0, 0.25, 0.5, 0.55, 1.0).finished();
+  for (int k = 0; k < 40; ++k) {
+    Eigen::VectorXd scores(7);
+    for (auto& s : scores) s = std::round(20.0 * rng.uniform()) / 20.0;
+    model.update(scores, Eigen::VectorXd::Zero(7), Eigen::VectorXd::Zero(7));
+    seen.insert(seen.end(), scores.begin(), scores.end());
+    const std::size_t n = std::min<std::size_t>(seen.size(), window);
+    const Eigen::VectorXd u = model.transform(probe);
+    for (Eigen::Index j = 0; j < probe.size(); ++j) {
+      double below = 0.0, equal = 0.0;
+      for (std::size_t i = seen.size() - n; i < seen.size(); ++i) {
+        below += seen[i] < probe[j];
+        equal += seen[i] == probe[j];
+      }
+      const double F = std::clamp((below + 0.5 * equal) / n, 0.5 / n, 1.0 - 0.5 / n);
+      EXPECT_EQ(u[j], F == 0.5 ? 0.0 : core::normal_quantile(F)) << "scan " << k << " probe " << j;
+    }
+  }
 }
 
 TEST(DetectorLearning, ScoreModelLearnsWhichScoresBelongToTargets) {

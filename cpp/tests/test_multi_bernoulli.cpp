@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -10,6 +11,8 @@
 
 #include "vtrack/core/errors.hpp"
 #include "vtrack/filters/multi_bernoulli.hpp"
+
+#include "people_scene.hpp"
 
 using vtrack::InvalidArgument;
 using vtrack::filters::BoxStates;
@@ -131,7 +134,8 @@ TEST(MultiBernoulli, MergeKeepsTheOlderLabelAndMixesByExistence) {
   auto component = [](std::uint64_t label, double r, float x, int n) {
     vtrack::filters::BoxParticles::States states(n, 4);
     for (int j = 0; j < n; ++j) states.row(j) << x + 0.1f * j, 10.f, 20.f, 40.f;
-    return BernoulliComponent{label, 0, r, vtrack::filters::BoxParticles(std::move(states))};
+    return BernoulliComponent{label, 0, r, vtrack::filters::BoxParticles(std::move(states)), {},
+                              Eigen::Vector4f::Zero()};
   };
   std::vector<BernoulliComponent> cs = {component(4, 0.9, 10, 10), component(7, 0.5, 14, 20),
                                         component(9, 0.6, 100, 5)};
@@ -317,7 +321,9 @@ TEST(MultiBernoulli, LostMemoryGivesAReappearingPersonTheirLabelBack) {
       const bool hidden = k >= 20 && k < 26;
       const auto tracks = f.step(scene(hidden ? std::vector<cv::Rect>{}
                                               : std::vector<cv::Rect>{{20 + 2 * k, 40, 12, 30}}));
-      if (hidden && k >= 23) EXPECT_TRUE(tracks.empty()) << "frame " << k;
+      if (hidden && k >= 23) {
+        EXPECT_TRUE(tracks.empty()) << "frame " << k;
+      }
       for (const auto& t : tracks) (k < 20 ? before : after).push_back(t.id);
     }
     EXPECT_FALSE(before.empty());
@@ -369,6 +375,67 @@ TEST(MultiBernoulli, LearnsThePeopleSizeAcrossScales) {
   EXPECT_FALSE(f.size_prior().learnt);
   EXPECT_EQ(f.size_prior().height, 50.0);
   EXPECT_NEAR(f.size_prior().width, 0.35 * 50.0, 1e-9);
+}
+
+namespace {
+
+// Three people of one shape (people_scene) on a ground plane seen in perspective, h = 0.32 x foot
+// row (50, 90 and 140 px tall), walking right at 1 px per frame, tracked with a learnt size by
+// row (size_by_row); the reported box is the filter's own. Returns, per person, the median over
+// frames 30-59 of the height of the filter box nearest to them over their height (0 if never
+// tracked).
+std::vector<double> box_height_fractions(MultiBernoulliParams p) {
+  p.size_by_row = true;
+  p.box.box_scale_w = p.box.box_scale_h = 1.0;
+  p.box.box_offset_x = p.box.box_offset_y = 0.0;
+  const double heights[3] = {50.0, 90.0, 140.0}, starts[3] = {100.0, 300.0, 480.0};
+  MultiBernoulliFilter f(640, 480, p);
+  std::vector<std::vector<double>> fractions(3);
+  for (int k = 0; k < 60; ++k) {
+    cv::Mat y(480, 640, CV_32F, cv::Scalar(1.0f));
+    for (int i = 0; i < 3; ++i) {
+      people_scene::render_person(y, starts[i] + k, heights[i] / 0.32 - 0.5 * heights[i],
+                                  0.35 * heights[i], heights[i]);
+    }
+    const Tracks& tracks = f.step(y);
+    if (k < 30) continue;
+    for (int i = 0; i < 3; ++i) {
+      const double cx = starts[i] + k;
+      for (const TrackEstimate& t : tracks) {
+        if (std::fabs(t.state[0] + 0.5 * t.state[2] - cx) < 0.25 * heights[i]) {
+          fractions[std::size_t(i)].push_back(t.state[3] / heights[i]);
+        }
+      }
+    }
+  }
+  std::vector<double> out;
+  for (auto& v : fractions) {
+    std::sort(v.begin(), v.end());
+    out.push_back(v.empty() ? 0.0 : v[v.size() / 2]);
+  }
+  return out;
+}
+
+}  // namespace
+
+// The "row" likelihood reference (TbdLikelihoodParams::delta_b) with the tracker's learnt person
+// height line: the filter's box is nearly the same fraction of a far and a near person (within
+// 15 %); with eq. (20) as printed the near person's box is a fraction 1.5 times the far one's or
+// more.
+TEST(MultiBernoulli, RowReferenceBoxesFarAndNearPeopleAlike) {
+  MultiBernoulliParams row;
+  row.seed = 3;
+  row.likelihood.delta_b_reference = vtrack::models::TbdLikelihoodParams::DeltaBReference::row;
+  const std::vector<double> by_row = box_height_fractions(row);
+  MultiBernoulliParams image = row;
+  image.likelihood.delta_b_reference = vtrack::models::TbdLikelihoodParams::DeltaBReference::image;
+  const std::vector<double> printed = box_height_fractions(image);
+  // (Measured, seed 3: "row" 0.55 / 0.62 / 0.59 of the far, middle and near person's height;
+  // "image" 0.44 / 0.58 / 0.79.)
+  for (int i = 0; i < 3; ++i) ASSERT_GT(by_row[std::size_t(i)], 0.0) << "person " << i;
+  const auto [lo, hi] = std::minmax_element(by_row.begin(), by_row.end());
+  EXPECT_LT(*hi / *lo, 1.15);
+  EXPECT_GT(printed[2], 1.5 * printed[0]);
 }
 
 TEST(MultiBernoulli, RejectsBadParametersNamingThem) {

@@ -14,6 +14,8 @@
 #include "vtrack/core/random.hpp"
 #include "vtrack/models/tbd_likelihood.hpp"
 
+#include "people_scene.hpp"
+
 using vtrack::InvalidArgument;
 using vtrack::models::BoxStates;
 using vtrack::models::TbdLikelihood;
@@ -239,6 +241,78 @@ TEST(TbdLikelihood, PersonReferenceIsScaleFree) {
   d.set_image(y);
   e.set_image(large);
   EXPECT_LT(e.log_likelihood(38, 18, 24, 54), d.log_likelihood(38, 18, 24, 54) - 1.0);
+}
+
+namespace {
+
+// The box that maximises log g_y among boxes centred on the person's column whose half-width,
+// top and bottom are fractions 0.3, 0.32, ..., 1.3 of the person's half-size from its centre
+// (brute force; the profile and the row weights are mirror-symmetric in x): the fractions of
+// the best box as (half-width, top, bottom).
+std::array<double, 3> best_box_fractions(const TbdLikelihood& lik, double cx, double cy, double w,
+                                         double h) {
+  double best = -std::numeric_limits<double>::infinity();
+  std::array<double, 3> arg{};
+  for (int i = 0; i <= 50; ++i)
+    for (int t = 0; t <= 50; ++t)
+      for (int b = 0; b <= 50; ++b) {
+        const double fx = 0.3 + 0.02 * i, ft = 0.3 + 0.02 * t, fb = 0.3 + 0.02 * b;
+        const double score = lik.log_likelihood(float(cx - fx * 0.5 * w), float(cy - ft * 0.5 * h),
+                                                float(fx * w), float((ft + fb) * 0.5 * h));
+        if (score > best) best = score, arg = {fx, ft, fb};
+      }
+  return arg;
+}
+
+}  // namespace
+
+// The "row" reference (delta_b): people 80, 160 and 320 px tall, each centred on the row where the
+// person height line puts a person of their size (h = 0.8 row, a(row) = 0.4 h(row)^2), all of one
+// shape. The best box covers the same fraction of each of them with "row", because k =
+// m_x a delta_F / (a(row) m delta_B) is the same for each; with eq. (20) as printed ("image", the
+// same delta_B, which the middle person's k equals), k is 16 times larger for the near person
+// than for the far one, and the best box takes more of the border the nearer the person.
+TEST(TbdLikelihood, RowReferenceFitsPeopleOfEverySizeAlike) {
+  const std::array<double, 3> heights = {80.0, 160.0, 320.0};
+  cv::Mat y(600, 560, CV_32F, cv::Scalar(1.0f));
+  std::array<double, 3> cxs = {60.0, 180.0, 400.0};
+  for (int k = 0; k < 3; ++k) {
+    people_scene::render_person(y, cxs[k], heights[k] / 0.8, 0.4 * heights[k], heights[k]);
+  }
+  std::vector<double> areas(static_cast<std::size_t>(y.rows));
+  for (int r = 0; r < y.rows; ++r) {
+    const double hr = 0.8 * std::max(r + 0.5, 1.0);
+    areas[std::size_t(r)] = 0.4 * hr * hr;
+  }
+  // delta_B such that a person-sized box earns (1 - ybar) / 0.35 at the middle person's size.
+  TbdLikelihoodParams image = printed();
+  image.delta_b = 0.35 * 0.4 * 160 * 160 / double(y.total());
+  TbdLikelihood printed_lik(image);
+  printed_lik.set_image(y);
+  TbdLikelihoodParams row = image;
+  row.delta_b_reference = TbdLikelihoodParams::DeltaBReference::row;
+  TbdLikelihood by_row(row);
+  by_row.set_person_size(0.4 * 160, 160);
+  by_row.set_image(y);  // no row areas yet: every weight is 1, eq. (20) as printed
+  for (const auto& b : std::vector<std::array<float, 4>>{{40, 60, 40, 90}, {150, 100, 70, 200}}) {
+    EXPECT_NEAR(by_row.log_likelihood(b[0], b[1], b[2], b[3]),
+                printed_lik.log_likelihood(b[0], b[1], b[2], b[3]), 1e-4);
+  }
+  by_row.set_row_areas(areas);
+  by_row.set_image(y);
+  std::array<std::array<double, 3>, 3> fr_row{}, fr_image{};
+  for (int k = 0; k < 3; ++k) {
+    const double h = heights[k], w = 0.4 * h, cy = h / 0.8;
+    fr_row[k] = best_box_fractions(by_row, cxs[k], cy, w, h);
+    fr_image[k] = best_box_fractions(printed_lik, cxs[k], cy, w, h);
+  }
+  for (int k = 0; k < 3; ++k)
+    for (int e = 0; e < 3; ++e) {
+      // Pixel rounding of the smallest person's edges: 0.5 px of 16 (x) or 40 (y) px.
+      EXPECT_NEAR(fr_row[k][e], fr_row[1][e], 0.05) << "person " << k << " edge " << e;
+    }
+  // (Measured: "row" 0.54-0.58 for every person and edge; "image" 0.48-0.50 far, 0.76 near.)
+  for (int e = 0; e < 3; ++e) EXPECT_GT(fr_image[2][e], fr_image[0][e] + 0.15) << "edge " << e;
 }
 
 TEST(TbdLikelihood, RejectsBadImagesAndParameters) {

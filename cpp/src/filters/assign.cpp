@@ -557,14 +557,18 @@ struct MurtyList {
   Murty murty;
   bool feasible = false;
   std::size_t n = 0;
-  const int* cols = nullptr;  // into Clusters::cols
+  // Each column's label: its column in the whole matrix (murty), or a choice code (PooledMurty).
+  std::vector<int> cols;
   std::vector<double> costs;
   std::vector<int> choices;  // per ranked assignment, each row's index into cols
 
+  // Ranks cost(rows, cluster_cols) (all rows or columns when null), the columns labelled
+  // `labels` (cluster_cols when null).
   void reset(const Eigen::Ref<const Eigen::MatrixXd>& cost, const int* rows, int n_rows,
-             const int* cluster_cols, int n_cols) {
+             const int* cluster_cols, int n_cols, const int* labels = nullptr) {
     n = static_cast<std::size_t>(n_rows);
-    cols = cluster_cols;
+    labels = labels ? labels : cluster_cols;
+    cols.assign(labels, labels + n_cols);
     costs.clear();
     choices.clear();
     feasible = n_rows <= n_cols;  // fewer columns than rows: infeasible
@@ -733,10 +737,13 @@ class ClusterRankings {
 // (i, j) is queued when (i, j-1) is taken, and (i, 0) when (i-1, 0) is: each pair once, never
 // before one that costs no more). A successor is queued only when the next entry is asked for, so
 // an entry of a level or a cluster is computed only when some sum that needs it may be next.
+// Rankings: has(k, r), cost(k, r), write(k, r, col_of_row) and count() of the clusters' own
+// rankings (ClusterRankings, PoolRankings).
+template <class Rankings>
 class SumRanking {
  public:
   using Pair = SumLevel::Pair;
-  SumRanking(ClusterRankings& clusters, std::vector<SumLevel>& levels)
+  SumRanking(Rankings& clusters, std::vector<SumLevel>& levels)
       : clusters_(clusters), levels_(levels) {
     if (levels_.size() < static_cast<std::size_t>(clusters.count())) levels_.resize(clusters.count());
     for (int k = 0; k < clusters.count(); ++k) {
@@ -793,17 +800,17 @@ class SumRanking {
     std::push_heap(l.queue.begin(), l.queue.end(), std::greater<>());
   }
 
-  ClusterRankings& clusters_;
+  Rankings& clusters_;
   std::vector<SumLevel>& levels_;
 };
 
-// The k best of the clusters' sums (see above) with their costs summed over the rows in order,
-// as Murty's method on the whole matrix sums them, ordered by that cost.
-RankedAssignments ranked_sums(const Eigen::Ref<const Eigen::MatrixXd>& cost, std::int64_t k,
-                              Workspace& w) {
-  const int n = static_cast<int>(cost.rows());
-  ClusterRankings clusters(cost, w);
-  SumRanking sums(clusters, w.levels);
+// The k best of the clusters' sums (see above) of an n-row matrix, with their costs summed over
+// the rows in order (row_cost(i, column of row i)), as Murty's method on the whole matrix sums
+// them, ordered by that cost; into `result`.
+template <class Rankings, class RowCost>
+void ranked_sums(Rankings& clusters, int n, std::int64_t k, Workspace& w, RowCost row_cost,
+                 RankedAssignments& result) {
+  SumRanking<Rankings> sums(clusters, w.levels);
   w.totals.clear();
   w.out.clear();
   w.col_of_row.resize(static_cast<std::size_t>(n));
@@ -820,13 +827,12 @@ RankedAssignments ranked_sums(const Eigen::Ref<const Eigen::MatrixXd>& cost, std
     }
     if (!found) break;
     double total = 0.0;
-    for (int i = 0; i < n; ++i) total += cost(i, w.col_of_row[i]);
+    for (int i = 0; i < n; ++i) total += row_cost(i, w.col_of_row[i]);
     w.totals.emplace_back(total, r);
     w.out.insert(w.out.end(), w.col_of_row.begin(), w.col_of_row.end());
   }
   std::stable_sort(w.totals.begin(), w.totals.end(),
                    [](const auto& a, const auto& b) { return a.first < b.first; });
-  RankedAssignments result;
   const auto kept = static_cast<Eigen::Index>(w.totals.size());
   result.assignments.resize(kept, n);
   result.costs.resize(kept);
@@ -835,7 +841,6 @@ RankedAssignments ranked_sums(const Eigen::Ref<const Eigen::MatrixXd>& cost, std
     result.costs[s] = total;
     for (int i = 0; i < n; ++i) result.assignments(s, i) = w.out[r * static_cast<std::size_t>(n) + i];
   }
-  return result;
 }
 
 // Murty's k best through the clusters, or on the whole matrix when it is one cluster: the same
@@ -851,13 +856,332 @@ RankedAssignments ranked_by_clusters(const Eigen::Ref<const Eigen::MatrixXd>& co
     result.costs.resize(0);
     return result;
   }
-  if (w.clusters.count > 1) return ranked_sums(cost, k, w);
+  if (w.clusters.count > 1) {
+    ClusterRankings clusters(cost, w);
+    RankedAssignments result;
+    ranked_sums(clusters, static_cast<int>(cost.rows()), k, w,
+                [&](int i, int col) { return cost(i, col); }, result);
+    return result;
+  }
   w.whole.reset(cost, nullptr, static_cast<int>(cost.rows()), nullptr,
                 static_cast<int>(cost.cols()));
   return w.whole.run(k);
 }
 
+
+// ---- Pooled rows (PooledMurty) ----------------------------------------------------------------
+//
+// The pool's rows, each with its entries and its ranking as a cluster of its own.
+struct PoolRows {
+  int shared = 0, n_private = 0;
+  // Row q's shared entries: columns entry_col[entry_begin[q] ..) (increasing) and their costs;
+  // its private costs private_cost[q * n_private ..).
+  std::vector<int> entry_begin{0}, entry_col;
+  std::vector<double> entry_cost, private_cost;
+  // Row q's finite entries as choice codes (shared column c >= 0, private p as -1 - p) sorted by
+  // cost, ties in the dense matrix's column order (shared increasing, then private 0, 1, ...):
+  // the ranking of a cluster of that row alone, as ClusterRankings sorts it.
+  std::vector<int> sorted_begin{0}, sorted_code;
+  std::vector<double> sorted_cost;
+
+  int size() const { return static_cast<int>(entry_begin.size()) - 1; }
+  // The cost of row q at a choice code (a finite entry of it).
+  double cost(int q, int code) const {
+    if (code < 0) return private_cost[static_cast<std::size_t>(q) * n_private - 1 - code];
+    const auto begin = entry_col.begin() + entry_begin[q];
+    const auto end = entry_col.begin() + entry_begin[q + 1];
+    return entry_cost[static_cast<std::size_t>(std::lower_bound(begin, end, code) -
+                                               entry_col.begin())];
+  }
+};
+
+// The clusters of the problem of pool rows `rows` (positions 0..n-1), as find_clusters finds them
+// in its dense matrix; the columns of cluster k are its shared columns (increasing). `taken`
+// receives the shared columns some row can take, increasing. first_row_of_col: -1 per shared
+// column on entry and on return.
+void find_pool_clusters(const PoolRows& pool, const std::vector<int>& rows, Workspace& w,
+                        std::vector<int>& first_row_of_col, std::vector<int>& taken) {
+  const int n = static_cast<int>(rows.size());
+  std::vector<int>& parent = w.parent;
+  parent.resize(static_cast<std::size_t>(n));
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto root = [&](int x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  Clusters& c = w.clusters;
+  c.feasible = true;
+  taken.clear();
+  for (int i = 0; i < n; ++i) {
+    const int q = rows[static_cast<std::size_t>(i)];
+    c.feasible &= pool.sorted_begin[q + 1] > pool.sorted_begin[q];  // some finite entry
+    for (int e = pool.entry_begin[q]; e < pool.entry_begin[q + 1]; ++e) {
+      int& first = first_row_of_col[static_cast<std::size_t>(pool.entry_col[e])];
+      if (first < 0) {
+        first = i;
+        taken.push_back(pool.entry_col[e]);
+        continue;
+      }
+      const int a = root(first), b = root(i);  // the smaller row stays the root
+      if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+  }
+  std::sort(taken.begin(), taken.end());
+  c.count = 0;
+  w.number.assign(static_cast<std::size_t>(n), -1);
+  w.row_of.resize(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {  // numbered by their first rows
+    const int r = root(i);
+    if (w.number[r] < 0) w.number[r] = c.count++;
+    w.row_of[i] = w.number[r];
+  }
+  w.col_of.resize(taken.size());
+  for (std::size_t t = 0; t < taken.size(); ++t) {
+    int& first = first_row_of_col[static_cast<std::size_t>(taken[t])];
+    w.col_of[t] = w.row_of[first];
+    first = -1;
+  }
+  group(w.row_of, c.count, c.rows, c.row_begin, w.next);
+  group(w.col_of, c.count, c.cols, c.col_begin, w.next);  // indices into taken
+  for (int& t : c.cols) t = taken[static_cast<std::size_t>(t)];
+}
+
+// The pool's clusters' rankings for SumRanking: a single row's sorted entries, or a MurtyList
+// (one per cluster of several rows, shared by every problem that has that cluster).
+class PoolRankings {
+ public:
+  PoolRankings(const PoolRows& pool, const std::vector<int>& rows, const Workspace& w,
+               const std::vector<MurtyList*>& lists)
+      : pool_(pool), rows_(rows), c_(w.clusters), lists_(lists) {}
+  int count() const { return c_.count; }
+  bool has(int k, std::size_t r) {
+    if (lists_[k]) return lists_[k]->has(r);
+    const int q = first_row(k);
+    return r < static_cast<std::size_t>(pool_.sorted_begin[q + 1] - pool_.sorted_begin[q]);
+  }
+  double cost(int k, std::size_t r) const {
+    if (lists_[k]) return lists_[k]->costs[r];
+    return pool_.sorted_cost[static_cast<std::size_t>(pool_.sorted_begin[first_row(k)]) + r];
+  }
+  // Writes cluster k's r-th assignment (choice codes) into code_of_row.
+  void write(int k, std::size_t r, std::vector<int>& code_of_row) const {
+    const int first = c_.row_begin[k];
+    if (!lists_[k]) {
+      code_of_row[c_.rows[first]] =
+          pool_.sorted_code[static_cast<std::size_t>(pool_.sorted_begin[first_row(k)]) + r];
+      return;
+    }
+    const MurtyList& list = *lists_[k];
+    for (std::size_t q = 0; q < list.n; ++q) {
+      code_of_row[c_.rows[first + q]] = list.cols[list.choices[r * list.n + q]];
+    }
+  }
+
+ private:
+  int first_row(int k) const { return rows_[static_cast<std::size_t>(c_.rows[c_.row_begin[k]])]; }
+
+  const PoolRows& pool_;
+  const std::vector<int>& rows_;
+  const Clusters& c_;
+  const std::vector<MurtyList*>& lists_;
+};
+
 }  // namespace
+
+// ---- PooledMurty --------------------------------------------------------------------------------
+
+struct PooledMurty::Impl {
+  PoolRows pool;
+  // Rankings of clusters of several rows, and of whole problems of one cluster (their keys end
+  // with kWhole), by their pool rows; lists[0 .. list_count) are in use.
+  static constexpr int kWhole = -1;
+  std::map<std::vector<int>, MurtyList*> memo;
+  std::vector<std::unique_ptr<MurtyList>> lists;
+  std::size_t list_count = 0;
+  // Scratch of one rank() call.
+  Workspace w;
+  std::vector<int> first_row_of_col, taken, key, codes;
+  std::vector<MurtyList*> cluster_lists;
+  Eigen::MatrixXd block;
+  RankedAssignments result;
+
+  std::vector<char> in_problem;  // per pool row, during a call's argument check
+
+  MurtyList* list(const std::vector<int>& rows, int k);
+  void rank_whole(const std::vector<int>& rows, std::int64_t k);
+};
+
+// Murty's ranking of cluster k of the current problem (k < 0: of the whole problem, over the
+// taken shared columns and every private column, +inf ones included, as murty() ranks a matrix of
+// one cluster; a cluster's matrix has the columns where one of its rows is finite): made at its
+// first request in this pool and extended by later problems with the same rows.
+MurtyList* PooledMurty::Impl::list(const std::vector<int>& rows, int k) {
+  const Clusters& c = w.clusters;
+  const bool whole = k < 0;
+  const int n = whole ? static_cast<int>(rows.size()) : c.row_begin[k + 1] - c.row_begin[k];
+  key.clear();
+  for (int i = 0; i < n; ++i) key.push_back(rows[whole ? i : c.rows[c.row_begin[k] + i]]);
+  if (whole) key.push_back(kWhole);
+  const auto found = memo.find(key);
+  if (found != memo.end()) return found->second;
+  if (whole) key.pop_back();
+  const int* shared = whole ? taken.data() : c.cols.data() + c.col_begin[k];
+  const int n_shared = whole ? static_cast<int>(taken.size()) : c.col_begin[k + 1] - c.col_begin[k];
+  codes.assign(shared, shared + n_shared);
+  const int n_private = pool.n_private;
+  for (int p = 0; p < n_private; ++p) {
+    for (int q : key) {
+      if (whole || pool.private_cost[static_cast<std::size_t>(q) * n_private + p] < kInf) {
+        codes.push_back(-1 - p);
+      }
+    }
+  }
+  block.setConstant(n, static_cast<Eigen::Index>(codes.size()), kInf);
+  for (int i = 0; i < n; ++i) {
+    const int q = key[static_cast<std::size_t>(i)];
+    for (int e = pool.entry_begin[q]; e < pool.entry_begin[q + 1]; ++e) {
+      const auto local = std::lower_bound(shared, shared + n_shared, pool.entry_col[e]) - shared;
+      block(i, local) = pool.entry_cost[static_cast<std::size_t>(e)];
+    }
+  }
+  int col = n_shared;
+  for (int p = 0; p < n_private; ++p) {
+    for (int i = 0; i < n; ++i) {
+      const double x =
+          pool.private_cost[static_cast<std::size_t>(key[static_cast<std::size_t>(i)]) * n_private + p];
+      if (whole || x < kInf) block(i, col++) = x;
+    }
+  }
+  if (list_count == lists.size()) lists.push_back(std::make_unique<MurtyList>());
+  MurtyList* l = lists[list_count++].get();
+  l->reset(block, nullptr, n, nullptr, static_cast<int>(codes.size()), codes.data());
+  if (whole) key.push_back(kWhole);
+  memo.emplace(key, l);
+  return l;
+}
+
+// A problem of one cluster (or none): murty() ranks its dense matrix whole, in Murty's order.
+void PooledMurty::Impl::rank_whole(const std::vector<int>& rows, std::int64_t k) {
+  MurtyList& l = *list(rows, -1);
+  std::size_t count = 0;
+  while (static_cast<std::int64_t>(count) < k && l.has(count)) ++count;
+  const auto n = static_cast<Eigen::Index>(rows.size());
+  result.assignments.resize(static_cast<Eigen::Index>(count), n);
+  result.costs.resize(static_cast<Eigen::Index>(count));
+  for (std::size_t s = 0; s < count; ++s) {
+    result.costs[static_cast<Eigen::Index>(s)] = l.costs[s];
+    for (Eigen::Index i = 0; i < n; ++i) {
+      result.assignments(static_cast<Eigen::Index>(s), i) =
+          l.cols[static_cast<std::size_t>(l.choices[s * l.n + static_cast<std::size_t>(i)])];
+    }
+  }
+}
+
+PooledMurty::PooledMurty() : impl_(std::make_unique<Impl>()) {}
+PooledMurty::~PooledMurty() = default;
+PooledMurty::PooledMurty(const PooledMurty&) : PooledMurty() {}
+PooledMurty& PooledMurty::operator=(const PooledMurty& other) {
+  if (this != &other) impl_ = std::make_unique<Impl>();
+  return *this;
+}
+PooledMurty::PooledMurty(PooledMurty&&) noexcept = default;
+PooledMurty& PooledMurty::operator=(PooledMurty&&) noexcept = default;
+
+void PooledMurty::reset(int shared_columns, int private_columns) {
+  require(shared_columns >= 0, "shared_columns", shared_columns, ">= 0");
+  require(private_columns >= 0, "private_columns", private_columns, ">= 0");
+  Impl& p = *impl_;
+  PoolRows& pool = p.pool;
+  pool.shared = shared_columns;
+  pool.n_private = private_columns;
+  pool.entry_begin.assign(1, 0);
+  pool.sorted_begin.assign(1, 0);
+  pool.entry_col.clear();
+  pool.entry_cost.clear();
+  pool.private_cost.clear();
+  pool.sorted_code.clear();
+  pool.sorted_cost.clear();
+  p.memo.clear();
+  p.list_count = 0;
+  p.first_row_of_col.assign(static_cast<std::size_t>(shared_columns), -1);
+}
+
+int PooledMurty::add_row(const int* cols, const double* costs, int count,
+                         const double* private_costs) {
+  PoolRows& pool = impl_->pool;
+  const auto check = [](double x) {
+    if (std::isnan(x) || x == -kInf) {
+      throw InvalidArgument(std::string("cost contains ") + (std::isnan(x) ? "NaN" : "-inf") +
+                            "; use +inf for forbidden pairs");
+    }
+  };
+  for (int e = 0; e < count; ++e) {
+    require(cols[e] >= 0 && cols[e] < pool.shared && (e == 0 || cols[e] > cols[e - 1]),
+            "cols", cols[e], "increasing shared columns");
+    check(costs[e]);
+  }
+  for (int p = 0; p < pool.n_private; ++p) check(private_costs[p]);
+  const auto sorted_start = pool.sorted_code.size();
+  const auto insert = [&](int code, double x) {  // insertion sort, ties in column order
+    if (x == kInf) return;
+    std::size_t b = pool.sorted_code.size();
+    pool.sorted_code.push_back(code);
+    pool.sorted_cost.push_back(x);
+    for (; b > sorted_start && x < pool.sorted_cost[b - 1]; --b) {
+      pool.sorted_code[b] = pool.sorted_code[b - 1];
+      pool.sorted_cost[b] = pool.sorted_cost[b - 1];
+    }
+    pool.sorted_code[b] = code;
+    pool.sorted_cost[b] = x;
+  };
+  for (int e = 0; e < count; ++e) {
+    if (costs[e] == kInf) continue;
+    pool.entry_col.push_back(cols[e]);
+    pool.entry_cost.push_back(costs[e]);
+    insert(cols[e], costs[e]);
+  }
+  for (int p = 0; p < pool.n_private; ++p) {
+    pool.private_cost.push_back(private_costs[p]);
+    insert(-1 - p, private_costs[p]);
+  }
+  pool.entry_begin.push_back(static_cast<int>(pool.entry_col.size()));
+  pool.sorted_begin.push_back(static_cast<int>(pool.sorted_code.size()));
+  return pool.size() - 1;
+}
+
+int PooledMurty::rows() const { return impl_->pool.size(); }
+
+const RankedAssignments& PooledMurty::rank(const std::vector<int>& rows, std::int64_t k) {
+  Impl& p = *impl_;
+  if (k <= 0) throw InvalidArgument("k must be >= 1, got " + std::to_string(k));
+  p.in_problem.assign(static_cast<std::size_t>(p.pool.size()), 0);
+  for (int q : rows) {
+    require(q >= 0 && q < p.pool.size() && !p.in_problem[static_cast<std::size_t>(q)], "rows", q,
+            "distinct rows of the pool");
+    p.in_problem[static_cast<std::size_t>(q)] = 1;
+  }
+  find_pool_clusters(p.pool, rows, p.w, p.first_row_of_col, p.taken);
+  const int n = static_cast<int>(rows.size());
+  const Clusters& c = p.w.clusters;
+  if (!c.feasible || n > static_cast<int>(p.taken.size()) + p.pool.n_private * n) {
+    p.result.assignments.resize(0, n);
+    p.result.costs.resize(0);
+    return p.result;
+  }
+  if (c.count <= 1) {
+    p.rank_whole(rows, k);
+    return p.result;
+  }
+  p.cluster_lists.assign(static_cast<std::size_t>(c.count), nullptr);
+  for (int q = 0; q < c.count; ++q) {
+    if (c.row_begin[q + 1] - c.row_begin[q] > 1) p.cluster_lists[q] = p.list(rows, q);
+  }
+  PoolRankings rankings(p.pool, rows, p.w, p.cluster_lists);
+  ranked_sums(rankings, n, k, p.w,
+              [&](int i, int code) { return p.pool.cost(rows[static_cast<std::size_t>(i)], code); },
+              p.result);
+  return p.result;
+}
 
 LinearAssignment linear_assignment(const Eigen::Ref<const Eigen::MatrixXd>& cost) {
   check_cost(cost);

@@ -175,18 +175,18 @@ void ScoreModel::update(const Eigen::Ref<const Eigen::VectorXd>& scores,
   // The window: at most window_ of this scan's scores, evenly spread over them.
   const auto n = static_cast<std::size_t>(scores.size());
   const std::size_t take = std::min(n, static_cast<std::size_t>(window_));
+  // sorted_ follows the window by one removal and one insertion per score (a scan adds a few
+  // scores to a window of ~1000: cheaper than sorting it again, and the same sorted values).
   for (std::size_t i = 0; i < take; ++i) {
     const double s = scores[static_cast<Eigen::Index>(i * n / take)];
     if (recent_.size() < static_cast<std::size_t>(window_)) {
       recent_.push_back(s);
     } else {
+      sorted_.erase(std::lower_bound(sorted_.begin(), sorted_.end(), recent_[next_]));
       recent_[next_] = s;
     }
+    sorted_.insert(std::upper_bound(sorted_.begin(), sorted_.end(), s), s);
     next_ = (next_ + 1) % static_cast<std::size_t>(window_);
-  }
-  if (take > 0) {
-    sorted_ = recent_;
-    std::sort(sorted_.begin(), sorted_.end());
   }
 }
 

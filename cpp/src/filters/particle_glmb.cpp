@@ -28,6 +28,13 @@ Eigen::MatrixXd cholesky_of(const Eigen::MatrixXd& cov, const std::string& what)
   return llt.matrixL();
 }
 
+// The symmetric square root S (S S^T = S^2 = A) of a positive semi-definite A, from its
+// eigen-decomposition with negative round-off clamped to zero (A may be singular).
+Eigen::MatrixXd symmetric_sqrt(const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>& eig) {
+  return eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal() *
+         eig.eigenvectors().transpose();
+}
+
 }  // namespace
 
 const core::ParameterTable<ParticleParams>& ParticleParams::table() {
@@ -36,6 +43,7 @@ const core::ParameterTable<ParticleParams>& ParticleParams::table() {
       core::ParameterTable<P>()
           .add("n_particles", &P::n_particles)
           .add("resample_threshold", &P::resample_threshold)
+          .add("regularise", &P::regularise)
           .add("depth_for_births", &P::depth_for_births)
           .add("mask_detections", &P::mask_detections)
           .add("occlusion_margin", &P::occlusion_margin)
@@ -64,9 +72,7 @@ ParticleTracks::ParticleTracks(ParticleParams params, std::uint64_t seed,
   if (eig.info() != Eigen::Success || eig.eigenvalues().minCoeff() < -1e-9 * (1.0 + Q.norm())) {
     throw InvalidArgument("motion Q is not positive semi-definite");
   }
-  motion_noise_sqrt_ = eig.eigenvectors() *
-                       eig.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal() *
-                       eig.eigenvectors().transpose();
+  motion_noise_sqrt_ = symmetric_sqrt(eig);
   noise_llt_.compute(0.5 * (observation.R + observation.R.transpose()));
   if (noise_llt_.info() != Eigen::Success) {
     throw InvalidArgument("observation R is not positive definite");
@@ -210,9 +216,36 @@ ParticleDensity ParticleTracks::reweight(const Density& prior, const Eigen::Vect
   }
   const Eigen::Index n = out.size();
   if (out.ess() < params_.resample_threshold * static_cast<double>(n)) {
+    if (!params_.regularise) {
+      out.resample(core::ResamplingScheme::Systematic, n, rng_);
+      return out;
+    }
+    const Eigen::VectorXd mean = out.mean();
+    const Eigen::MatrixXd cov = out.covariance();
     out.resample(core::ResamplingScheme::Systematic, n, rng_);
+    regularise(out, mean, cov);
   }
   return out;
+}
+
+void ParticleTracks::regularise(Density& d, const Eigen::VectorXd& mean,
+                                const Eigen::MatrixXd& cov) {
+  // Silverman's bandwidth for a Gaussian kernel in d dimensions (Musso, Oudjane & Le Gland 2001,
+  // the regularised particle filter), and Liu & West's (2001) shrinkage a = sqrt(1 - h^2): the
+  // kernel density a x_i + (1 - a) m + h L e has the mean m and the covariance
+  // a^2 P + h^2 P = P of the weighted particles, not P (1 + h^2).
+  const auto n = static_cast<double>(d.size());
+  const auto dim = static_cast<double>(d.dim());
+  const double h = std::pow(4.0 / (n * (dim + 2.0)), 1.0 / (dim + 4.0));
+  const double a = std::sqrt(1.0 - h * h);
+  // P may be singular (a collapsed cloud, or a state component no particle varies in).
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(0.5 * (cov + cov.transpose()));
+  const Eigen::MatrixXd root = symmetric_sqrt(eig);
+  const Eigen::MatrixXd& noise = normal_draws(d.size(), d.dim());
+  Eigen::MatrixXd& x = d.states();
+  x *= a;
+  x.rowwise() += ((1.0 - a) * mean).transpose();
+  x.noalias() += h * noise * root;  // root is symmetric: rows e_i^T root = (root e_i)^T
 }
 
 ParticleDensity ParticleTracks::detected(const Candidate& c,

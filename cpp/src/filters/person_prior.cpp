@@ -77,6 +77,7 @@ bool PersonHeight::observe(const cv::Mat& y, float threshold, double person_area
   if (!(h > 0.0)) return false;
   learnt_ = true;
   height_ = h;
+  if (fit_line_) line_ = estimator_.person_height_line();
   return true;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include <opencv2/imgproc.hpp>
 
@@ -34,7 +35,27 @@ double log2_binned_median(const std::vector<double>& histogram, int bins_per_oct
   return std::exp2(static_cast<double>(histogram.size()) / bins_per_octave);
 }
 
+// The value at which the cumulative weight of (value, weight) pairs reaches half the total (the
+// lower weighted median); 0 when empty. Sorts `pairs`.
+double weighted_median(std::vector<std::pair<double, double>>& pairs) {
+  if (pairs.empty()) return 0.0;
+  std::sort(pairs.begin(), pairs.end());
+  double total = 0.0;
+  for (const auto& p : pairs) total += p.second;
+  double below = 0.0;
+  for (const auto& p : pairs) {
+    below += p.second;
+    if (below >= 0.5 * total) return p.first;
+  }
+  return pairs.back().first;
+}
+
 }  // namespace
+
+double PersonHeightLine::at(double foot_row) const {
+  if (!by_row) return intercept;
+  return std::clamp(slope * foot_row + intercept, min_height, max_height);
+}
 
 ForegroundSizeEstimator::ForegroundSizeEstimator(double half_life, double min_area_fraction,
                                                  double aspect)
@@ -46,11 +67,13 @@ ForegroundSizeEstimator::ForegroundSizeEstimator(double half_life, double min_ar
   decay_ = std::isinf(half_life) ? 1.0 : std::exp2(-1.0 / half_life);
   area_by_height_.assign(kHeightBins, 0.0);
   count_.assign(static_cast<std::size_t>(kHeightBins) * kAreaBins, 0.0);
+  band_count_.assign(static_cast<std::size_t>(kRowBands) * kHeightBins * kBandAreaBins, 0.0);
 }
 
 void ForegroundSizeEstimator::reset() {
   std::fill(area_by_height_.begin(), area_by_height_.end(), 0.0);
   std::fill(count_.begin(), count_.end(), 0.0);
+  std::fill(band_count_.begin(), band_count_.end(), 0.0);
   weight_ = 0.0;
   frames_ = 0;
 }
@@ -64,6 +87,7 @@ void ForegroundSizeEstimator::observe(const cv::Mat& y, float threshold) {
   if (decay_ < 1.0) {
     for (double& a : area_by_height_) a *= decay_;
     for (double& c : count_) c *= decay_;
+    for (double& c : band_count_) c *= decay_;
     weight_ *= decay_;
   }
   const double min_area = std::max(min_area_fraction_ * static_cast<double>(y.total()), 1.0);
@@ -78,8 +102,16 @@ void ForegroundSizeEstimator::observe(const cv::Mat& y, float threshold) {
     const int ab = log2_bin(area, kAreaBinsPerOctave, kAreaBins);
     area_by_height_[static_cast<std::size_t>(hb)] += area;
     count_[static_cast<std::size_t>(hb) * kAreaBins + static_cast<std::size_t>(ab)] += 1.0;
+    // The foot row: the component's last row, as a band of the image height.
+    const int foot = s[cv::CC_STAT_TOP] + s[cv::CC_STAT_HEIGHT] - 1;
+    const int band = std::min(kRowBands - 1, foot * kRowBands / y.rows);
+    const int bab = log2_bin(area, kBandAreaBinsPerOctave, kBandAreaBins);
+    band_count_[(static_cast<std::size_t>(band) * kHeightBins + static_cast<std::size_t>(hb)) *
+                    kBandAreaBins +
+                static_cast<std::size_t>(bab)] += 1.0;
     weight_ += area;
   }
+  rows_ = y.rows;
   ++frames_;
 }
 
@@ -108,6 +140,79 @@ double ForegroundSizeEstimator::person_height() const {
   if (!(first > 0.0)) return anchor;
   const double second = count_median_height(person_area(first / 2.0));
   return second > 0.0 ? second : first;
+}
+
+}  // namespace vtrack::models
+
+namespace vtrack::models {
+
+double ForegroundSizeEstimator::band_median_height(int band, double anchor, double* count) const {
+  std::vector<double> by_height(kHeightBins, 0.0);
+  // Count median of the band's components whose area is at least min_area (to a bin).
+  auto median = [&](double min_area, double* total) {
+    const int first = log2_bin(std::max(min_area, 1.0), kBandAreaBinsPerOctave, kBandAreaBins);
+    double sum = 0.0;
+    for (int hb = 0; hb < kHeightBins; ++hb) {
+      const double* row =
+          &band_count_[(static_cast<std::size_t>(band) * kHeightBins + hb) * kBandAreaBins];
+      double c = 0.0;
+      for (int ab = first; ab < kBandAreaBins; ++ab) c += row[ab];
+      by_height[static_cast<std::size_t>(hb)] = c;
+      sum += c;
+    }
+    if (total) *total = sum;
+    return log2_binned_median(by_height, kHeightBinsPerOctave);
+  };
+  auto person_area = [this](double h) { return aspect_ * h * h; };
+  const double first = median(person_area(anchor / 3.0), nullptr);
+  if (!(first > 0.0)) {
+    *count = 0.0;
+    return 0.0;
+  }
+  return median(person_area(first / 2.0), count);
+}
+
+PersonHeightLine ForegroundSizeEstimator::person_height_line() const {
+  PersonHeightLine line;
+  const double h = person_height();
+  line.intercept = h;
+  if (!(h > 0.0) || rows_ < 1) return line;
+  // (foot row at the band's centre, band median height, count) of the supported bands.
+  struct Point {
+    double row, height, count;
+  };
+  std::vector<Point> points;
+  for (int b = 0; b < kRowBands; ++b) {
+    double count = 0.0;
+    const double m = band_median_height(b, h, &count);
+    if (m > 0.0 && count >= kMinBandCount) {
+      points.push_back({(b + 0.5) * rows_ / kRowBands, m, count});
+    }
+  }
+  if (points.size() < 3) return line;
+  // Weighted Theil-Sen: the weighted median of the pairwise slopes, then of the intercepts.
+  std::vector<std::pair<double, double>> pairs;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    for (std::size_t j = i + 1; j < points.size(); ++j) {
+      pairs.emplace_back((points[j].height - points[i].height) / (points[j].row - points[i].row),
+                         points[i].count * points[j].count);
+    }
+  }
+  const double slope = weighted_median(pairs);
+  pairs.clear();
+  for (const auto& p : points) pairs.emplace_back(p.height - slope * p.row, p.count);
+  const double intercept = weighted_median(pairs);
+  const double top = points.front().row, bottom = points.back().row;
+  // Not supported: see the header comment.
+  if (!(slope > 0.0) || slope * (bottom - top) < 0.1 * h) return line;
+  const double h_top = slope * top + intercept, h_bottom = slope * bottom + intercept;
+  if (!(h_top > 0.0)) return line;
+  line.slope = slope;
+  line.intercept = intercept;
+  line.min_height = 0.5 * h_top;
+  line.max_height = 2.0 * h_bottom;
+  line.by_row = true;
+  return line;
 }
 
 }  // namespace vtrack::models

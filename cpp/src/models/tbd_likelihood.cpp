@@ -18,7 +18,8 @@ const core::ParameterTable<TbdLikelihoodParams>& TbdLikelihoodParams::table() {
                                 .add("delta_b", &P::delta_b)
                                 .add_choice("delta_b_reference", &P::delta_b_reference,
                                             {{"person", P::DeltaBReference::person},
-                                             {"image", P::DeltaBReference::image}})
+                                             {"image", P::DeltaBReference::image},
+                                             {"row", P::DeltaBReference::row}})
                                 .add("closing_size", &P::closing_size)
                                 .add("closing_ratio", &P::closing_ratio);
   return table;
@@ -45,6 +46,16 @@ void TbdLikelihood::set_person_size(double width, double height) {
           "a positive finite number");
   person_width_ = width;
   person_height_ = height;
+}
+
+void TbdLikelihood::set_row_areas(std::vector<double> areas) {
+  for (std::size_t r = 0; r < areas.size(); ++r) {
+    if (!(std::isfinite(areas[r]) && areas[r] > 0.0)) {
+      throw InvalidArgument("row area must be a positive finite number, got " +
+                            value_text(areas[r]) + " at row " + std::to_string(r));
+    }
+  }
+  row_areas_ = std::move(areas);
 }
 
 int TbdLikelihood::closing_pixels() const {
@@ -101,17 +112,53 @@ void TbdLikelihood::set_image(const cv::Mat& y) {
   // The background model's separable closing (image/morphology.hpp): equal to cv::morphologyEx
   // (a max/min over a replicated border equals one over the pixels inside), single-threaded
   // because the tracker runs one per camera.
-  const bool person = params_.delta_b_reference == TbdLikelihoodParams::DeltaBReference::person;
-  if ((person || (params_.closing_size == 0 && params_.closing_ratio > 0.0)) &&
+  using Reference = TbdLikelihoodParams::DeltaBReference;
+  const bool person = params_.delta_b_reference == Reference::person;
+  if ((params_.delta_b_reference != Reference::image ||
+       (params_.closing_size == 0 && params_.closing_ratio > 0.0)) &&
       !has_person_size()) {
-    throw InvalidArgument("the likelihood's delta_b_reference 'person' and closing_ratio need the "
-                          "person size (set_person_size) before the first image");
+    throw InvalidArgument("the likelihood's delta_b_reference 'person' or 'row' and closing_ratio "
+                          "need the person size (set_person_size) before the first image");
   }
   image::close_square(y, closed_, closing_pixels(), 1, &closing_workspace_);
   integral_.compute(closed_);
   // Eq. (20)'s m delta_B, or a delta_B with a the person prior's area (see delta_b).
   const double area = person ? person_width_ * person_height_ : static_cast<double>(y.total());
   inv_m_delta_b_ = 1.0 / (area * params_.delta_b);
+  if (params_.delta_b_reference == Reference::row) set_row_reward();
+}
+
+void TbdLikelihood::set_row_reward() {
+  // Each pixel's reward (1 - y_i) a / (a(row_i) m delta_B) (see delta_b: eq. 14's weighted
+  // average), summed over boxes by a second integral image.
+  if (!row_areas_.empty() && row_areas_.size() != static_cast<std::size_t>(closed_.rows)) {
+    throw InvalidArgument("the likelihood's row areas cover " + std::to_string(row_areas_.size()) +
+                          " rows, the image has " + std::to_string(closed_.rows));
+  }
+  reward_.create(closed_.size(), CV_32FC1);
+  for (int r = 0; r < closed_.rows; ++r) {
+    const double weight =
+        row_areas_.empty() ? 1.0 : person_width_ * person_height_ / row_areas_[std::size_t(r)];
+    const auto c = static_cast<float>(weight * inv_m_delta_b_);
+    const float* in = closed_.ptr<float>(r);
+    float* out = reward_.ptr<float>(r);
+    for (int col = 0; col < closed_.cols; ++col) out[col] = c * (1.0f - in[col]);
+  }
+  reward_integral_.compute(reward_);
+}
+
+double TbdLikelihood::row_reward(const image::Rect& r,
+                                 const std::vector<image::Rect>& explained) const {
+  double sum = reward_integral_.sum(r);
+  // Pixels inside an explained region are background (eq. 13): they earn nothing.
+  for (const image::Rect& e : explained) {
+    const int x0 = std::max(r.x, e.x), y0 = std::max(r.y, e.y);
+    const int x1 = std::min(r.x + r.width, e.x + e.width);
+    const int y1 = std::min(r.y + r.height, e.y + e.height);
+    if (x1 > x0 && y1 > y0) sum -= reward_integral_.sum({x0, y0, x1 - x0, y1 - y0});
+  }
+  // Overlapping explained regions are removed twice there: the reward is at least 0.
+  return std::max(sum, 0.0);
 }
 
 double TbdLikelihood::explained_sum(const image::Rect& rect,
@@ -142,8 +189,12 @@ double TbdLikelihood::log_likelihood(float x, float y, float w, float h,
   const double sum = explained_sum(r, explained);
   const double ybar = sum / m_x;  // eq. (11)
   // log of eq. (20): m_x (1 - ybar) / (m delta_B) + log zeta_F - ybar / delta_F, with
-  // m_x (1 - ybar) = m_x - sum.
-  return (m_x - sum) * inv_m_delta_b_ + log_zeta_f_ - ybar / params_.delta_f;
+  // m_x (1 - ybar) = m_x - sum; "row": sum_i (1 - y_i) a / a(row_i) in place of m_x - sum.
+  const double reward =
+      params_.delta_b_reference == TbdLikelihoodParams::DeltaBReference::row
+          ? row_reward(r, explained)
+          : (m_x - sum) * inv_m_delta_b_;
+  return reward + log_zeta_f_ - ybar / params_.delta_f;
 }
 
 void TbdLikelihood::log_likelihood(const Eigen::Ref<const BoxStates>& states, Eigen::VectorXd& out,

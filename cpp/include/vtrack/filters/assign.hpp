@@ -21,6 +21,7 @@
 // update's matrices) is ranked per cluster and the k best sums of the clusters' rankings are
 // merged lazily: the same k best, from much smaller problems.
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
@@ -54,6 +55,50 @@ struct RankedAssignments {
   Eigen::VectorXd costs;
 };
 RankedAssignments murty(const Eigen::Ref<const Eigen::MatrixXd>& cost, std::int64_t k);
+
+// Murty's k best for many problems whose rows come from one pool, as murty() ranks each.
+//
+// The GLMB update ranks one matrix per prior hypothesis, with a row per track the hypothesis holds
+// and one per birth; the rows recur from hypothesis to hypothesis, and so do the independent
+// clusters the gates split them into (most of one row). A pool row has finite costs at a few
+// shared columns (detections: a problem gives each to one row at most) and at `private_columns`
+// columns of its own (missed, absent). The problem of pool rows r_0 .. r_{n-1} is the dense matrix
+//   [the shared columns some r_i can take, increasing | private column 0 of r_0 .. r_{n-1} |
+//    private column 1 of r_0 .. r_{n-1} | ...]
+// and rank() returns exactly murty() of it -- the same assignments with the same costs in the same
+// order, equal costs included -- without forming it: each row's entries are sorted once per pool,
+// each cluster of several rows is ranked once per pool (its ranking extended lazily when a later
+// problem asks for more), and a problem costs a union-find over its rows' few shared entries plus
+// the lazy merge of its clusters' rankings.
+class PooledMurty {
+ public:
+  // A copy starts empty: the pool is the scratch of one batch of problems (the GLMB's scan).
+  PooledMurty();
+  ~PooledMurty();
+  PooledMurty(const PooledMurty&);
+  PooledMurty& operator=(const PooledMurty&);
+  PooledMurty(PooledMurty&&) noexcept;
+  PooledMurty& operator=(PooledMurty&&) noexcept;
+
+  // Empties the pool (keeping its buffers' capacity) for rows over `shared_columns` shared
+  // columns, each with `private_columns` columns of its own.
+  void reset(int shared_columns, int private_columns);
+  // Adds a row and returns its index: cost costs[e] at shared column cols[e] (e < count, columns
+  // increasing), +inf at the other shared columns, private_costs[p] at its private column p.
+  // +inf entries are forbidden pairs; NaN and -inf are InvalidArgument naming `cost`.
+  int add_row(const int* cols, const double* costs, int count, const double* private_costs);
+  int rows() const;
+  // The k best assignments of the problem of pool rows `rows` (distinct) as murty() ranks its
+  // dense matrix (above), k' <= k of them; assignments(s, i) is row i's column: a shared column
+  // c >= 0, or -1 - p for its private column p. A matrix with more rows than columns gives none
+  // (murty() rejects it). Valid until the next call. InvalidArgument for k <= 0 or a row index
+  // outside the pool.
+  const RankedAssignments& rank(const std::vector<int>& rows, std::int64_t k);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 // The randomised alternative to Murty's ranking of Vo, Vo & Hoang (2017), "An efficient
 // implementation of the generalized labeled multi-Bernoulli filter", IEEE TSP 65(8), section

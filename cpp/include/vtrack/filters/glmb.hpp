@@ -22,6 +22,7 @@
 
 #include "vtrack/core/parameters.hpp"
 #include "vtrack/core/random.hpp"
+#include "vtrack/filters/assign.hpp"
 #include "vtrack/models/linear_gaussian.hpp"
 
 namespace vtrack::filters {
@@ -380,7 +381,7 @@ class GlmbFilter {
     std::map<std::pair<int, int>, int> child_of;  // (row, detection or -1) -> child
     std::map<std::vector<int>, double> weights;   // child set -> log weight (unnormalised)
   };
-  // The posterior hypotheses of one prior hypothesis: Murty's k best or the Gibbs sampler's.
+  // The posterior hypotheses of one prior hypothesis that the Gibbs sampler visits.
   struct RankedChoices {
     Eigen::Matrix<std::int64_t, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> assignments;
     Eigen::VectorXd costs;
@@ -400,10 +401,15 @@ class GlmbFilter {
   int child_index(const ScanFactors& factors, Posterior& posterior, int row, int detection,
                   const Eigen::Ref<const Eigen::MatrixXd>& detections);
   // The cost matrix of one prior hypothesis (its tracks and the births as rows) over the
-  // detections some row can take (`columns`), missed and absent.
+  // detections some row can take (`columns`), missed and absent: the Gibbs sampler's input
+  // (Murty's ranking reads the same costs from ranking_pool_).
   Eigen::MatrixXd cost_matrix(const ScanFactors& factors, const std::vector<int>& rows,
                               std::vector<int>& columns) const;
+  // The Gibbs sampler's posterior hypotheses of one cost matrix.
   RankedChoices rank(const Eigen::MatrixXd& cost, std::int64_t requested);
+  // Loads the scan's candidate rows into ranking_pool_ (Murty's ranking): row r's entries are the
+  // costs cost_matrix gives it, its private columns missed and absent.
+  void pool_rows(const ScanFactors& factors);
 
   // The summary of the kept hypotheses (summary_).
   void summarise(const std::vector<Hypothesis>& hypotheses, const ScanFactors& factors,
@@ -433,6 +439,9 @@ class GlmbFilter {
   std::vector<Track> tracks_;
   std::vector<Hypothesis> hypotheses_;
   core::Rng ranking_rng_;
+  // Murty's ranking of every prior hypothesis's matrix of one scan, from the candidate rows they
+  // share: the same k best as assign::murty of cost_matrix, without forming it.
+  assign::PooledMurty ranking_pool_;
   int time_ = 0;
   ScanSummary summary_;
   std::vector<GlmbEstimate> estimates_;

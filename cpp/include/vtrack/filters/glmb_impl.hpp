@@ -262,7 +262,22 @@ typename GlmbFilter<Tracks>::Posterior GlmbFilter<Tracks>::rank_hypotheses(
       it->second = hi + std::log(std::exp(it->second - hi) + std::exp(log_weight - hi));
     }
   };
+  const bool pooled = params_.ranking == HypothesisRanking::murty;
+  if (pooled) pool_rows(factors);
   std::vector<int> rows, columns, tracks;
+  // The posterior hypotheses of one ranking, each row's choice coded as a detection j >= 0, -1
+  // missed or -2 absent (assign::PooledMurty's codes).
+  auto add_ranked = [&](const auto& assignments, const Eigen::VectorXd& costs, double log_weight,
+                        auto code_of) {
+    for (Eigen::Index s = 0; s < costs.size(); ++s) {
+      tracks.clear();
+      for (std::size_t i = 0; i < rows.size(); ++i) {
+        const int code = code_of(assignments(s, static_cast<Eigen::Index>(i)));
+        if (code >= -1) tracks.push_back(child_index(factors, posterior, rows[i], code, detections));
+      }
+      add_hypothesis(tracks, log_weight - costs[s]);
+    }
+  };
   for (std::size_t h = 0; h < hypotheses_.size(); ++h) {
     core::poll_interrupt();  // a step with a large budget can take seconds
     const auto requested =
@@ -274,24 +289,41 @@ typename GlmbFilter<Tracks>::Posterior GlmbFilter<Tracks>::rank_hypotheses(
       add_hypothesis({}, hypotheses_[h].log_weight);
       continue;
     }
+    if (pooled) {
+      const assign::RankedAssignments& ranked = ranking_pool_.rank(rows, requested);
+      add_ranked(ranked.assignments, ranked.costs, hypotheses_[h].log_weight,
+                 [](std::int64_t code) { return static_cast<int>(code); });
+      continue;
+    }
     const Eigen::MatrixXd cost = cost_matrix(factors, rows, columns);
     const int n = static_cast<int>(rows.size());
     const int m = static_cast<int>(columns.size());
     const RankedChoices ranked = rank(cost, requested);
-    for (Eigen::Index s = 0; s < ranked.costs.size(); ++s) {
-      tracks.clear();
-      for (int i = 0; i < n; ++i) {
-        const auto col = static_cast<int>(ranked.assignments(s, i));
-        if (col < m) {
-          tracks.push_back(child_index(factors, posterior, rows[i], columns[col], detections));
-        } else if (col < m + n) {
-          tracks.push_back(child_index(factors, posterior, rows[i], -1, detections));
-        }
-      }
-      add_hypothesis(tracks, hypotheses_[h].log_weight - ranked.costs[s]);
-    }
+    add_ranked(ranked.assignments, ranked.costs, hypotheses_[h].log_weight,
+               [&](std::int64_t col) {
+                 return col < m ? columns[static_cast<std::size_t>(col)] : col < m + n ? -1 : -2;
+               });
   }
   return posterior;
+}
+
+template <class Tracks>
+void GlmbFilter<Tracks>::pool_rows(const ScanFactors& f) {
+  const Eigen::Index n_det = f.log_detected.cols();
+  ranking_pool_.reset(static_cast<int>(n_det), 2);
+  std::vector<int> cols;
+  std::vector<double> costs;
+  for (Eigen::Index r = 0; r < f.log_detected.rows(); ++r) {
+    cols.clear();
+    costs.clear();
+    for (Eigen::Index j = 0; j < n_det; ++j) {
+      if (!(f.log_detected(r, j) > -detail::kInfinity)) continue;
+      cols.push_back(static_cast<int>(j));
+      costs.push_back(-(f.log_exists[r] + f.log_detected(r, j)));
+    }
+    const double own[2] = {-(f.log_exists[r] + f.log_missed[r]), -f.log_absent[r]};
+    ranking_pool_.add_row(cols.data(), costs.data(), static_cast<int>(cols.size()), own);
+  }
 }
 
 template <class Tracks>
@@ -341,12 +373,9 @@ void GlmbFilter<Tracks>::keep_used_tracks(std::vector<Hypothesis> hypotheses,
 template <class Tracks>
 typename GlmbFilter<Tracks>::RankedChoices GlmbFilter<Tracks>::rank(const Eigen::MatrixXd& cost,
                                                                     std::int64_t requested) {
-  if (params_.ranking == HypothesisRanking::gibbs) {
-    assign::SampledAssignments s = assign::gibbs_assignments(cost, requested, ranking_rng_);
-    return {std::move(s.assignments), std::move(s.costs)};
-  }
-  assign::RankedAssignments r = assign::murty(cost, requested);
-  return {std::move(r.assignments), std::move(r.costs)};
+  // The Gibbs sampler: Murty's ranking goes through ranking_pool_ (rank_hypotheses).
+  assign::SampledAssignments s = assign::gibbs_assignments(cost, requested, ranking_rng_);
+  return {std::move(s.assignments), std::move(s.costs)};
 }
 
 template <class Tracks>

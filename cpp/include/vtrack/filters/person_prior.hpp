@@ -72,6 +72,22 @@ class PersonHeight {
   double height() const { return height_; }
   // Whether height() comes from the scene's foreground.
   bool learnt() const { return learnt_; }
+  // The person height at a foot row (px): size_from_foreground x the learnt perspective line
+  // (models::PersonHeightLine) once learnt and supported by the data, else height().
+  double height_at_foot(double foot_row) const {
+    return line_.by_row ? params_.size_from_foreground * line_.at(foot_row) : height_;
+  }
+  // Whether height_at_foot follows the row.
+  bool by_row() const { return line_.by_row; }
+  // The smallest person height the line was fitted on (its value at the top row band where
+  // people were seen, times size_from_foreground); 0 unless by_row. height_at_foot goes down
+  // to half of it above those rows.
+  double smallest_seen() const {
+    return line_.by_row ? 2.0 * params_.size_from_foreground * line_.min_height : 0.0;
+  }
+  // Whether observe also fits the line (off by default: it costs a pass over the row bands'
+  // histograms per frame, which only size_by_row uses).
+  void set_fit_line(bool on) { fit_line_ = on; }
 
   // Counts the foreground components of y (CV_32FC1, y < threshold is foreground). Returns true
   // when height() changed. The initial guess stays until the decayed area of the components
@@ -85,6 +101,8 @@ class PersonHeight {
   models::ForegroundSizeEstimator estimator_;
   double height_;
   bool learnt_ = false;
+  models::PersonHeightLine line_;
+  bool fit_line_ = false;
 };
 
 }  // namespace vtrack::filters

@@ -69,8 +69,29 @@ struct TbdLikelihoodParams {
   // 320 x 240 synthetic scene of tests/test_track_video.py (people 1.2% of the image, twice
   // PETS09's share, and cleaner y) "person" 0.35 gave 0.618 / 0.803 against 0.938 / 0.968 with
   // "image" 2e-3: a person-relative reward needs another value there, so it is not the default.
+  //
+  // With delta_b_reference "row", eq. (20) as printed ("image", the same delta_B) with each
+  // pixel i's unit of 1 - y_i weighted by a / a(row_i): a the prior's mean person area
+  // (set_person_size) and a(row) the area of the person the prior expects centred on that row
+  // (the tracker's person height line by foot row, set_row_areas; without one every weight is 1,
+  // i.e. exactly "image"). Why: with "image" or "person" the reward grows with the box's pixel
+  // count m_x while the penalty -ybar / delta_F does not, so the best box takes a strip of mean
+  // y_s iff y_s < (k + ybar) / (1 + k) with k = m_x delta_F / (m delta_B): 0.14 for a 60 px
+  // PETS09 person (boxes shrink to the dark core) and 0.73 for a 130 px one (boxes reach over
+  // grey background), so one box calibration cannot fit both. With "row", k = m_x a delta_F /
+  // (a(row) m delta_B) is the same for every person-sized box, the value "image" gives the mean
+  // person. It is eq. (14)'s "weighted average" with the pixel weights 1 / a(row_i) (delta_B
+  // absorbing their scale): the weights do not depend on the state X, so eqs. (15)-(20) go
+  // through unchanged with m_x (1 - ybar) replaced by sum_{i in T(x)} (1 - y_i) a / a(row_i),
+  // and f(y) still cancels. (A normaliser taken at each box's own row instead would make g_B
+  // depend on X beyond eq. (13)'s fill, and its gradient in the box's row would pull boxes up the
+  // image, towards smaller a.) The price: inside one box the upper rows weigh more than the lower
+  // ones, so the best box reaches a little further up than down (in the unit test 0.58 of the
+  // half-height above the centre against 0.54 below, at every size, which a calibration absorbs).
+  // The multi-Bernoulli tracker uses it with size_by_row only; it is off by default
+  // (benchmarks/mb_perspective.py: better IDF1 and HOTA on PETS09-S2L1, not MOTA).
   double delta_b = 2e-3;
-  enum class DeltaBReference { image, person };
+  enum class DeltaBReference { image, person, row };
   DeltaBReference delta_b_reference = DeltaBReference::image;
   // Side of the square structuring element of the morphological closing of y (Section 3.2), which
   // removes foreground specks and joins the fragments of a silhouette. closing_size > 1 (odd):
@@ -103,6 +124,11 @@ class TbdLikelihood {
   // and the closing_ratio refer to; the tracker sets it whenever its prior changes.
   void set_person_size(double width, double height);
   bool has_person_size() const { return person_height_ > 0.0; }
+  // The "row" reference's a(row): one area (px^2, positive, finite) per image row, or empty for
+  // the constant person area; applies from the next set_image, whose y must then have
+  // areas.size() rows. The tracker sets it whenever its person height line changes.
+  void set_row_areas(std::vector<double> areas);
+  const std::vector<double>& row_areas() const { return row_areas_; }
   // The closing's side in pixels in force (0 or 1: none).
   int closing_pixels() const;
 
@@ -132,10 +158,19 @@ class TbdLikelihood {
  private:
   TbdLikelihoodParams params_;
   double log_zeta_f_;
+  // Fills reward_ and its integral image from closed_ and the row areas.
+  void set_row_reward();
+  // Sum over `rect` (clipped) of the "row" reward image, without the `explained` rectangles.
+  double row_reward(const image::Rect& rect, const std::vector<image::Rect>& explained) const;
+
   double inv_m_delta_b_ = 0.0;  // 1 / (m delta_B) or 1 / (a delta_B), set with the image
   double person_width_ = 0.0;
   double person_height_ = 0.0;
+  std::vector<double> row_areas_;
   cv::Mat closed_;
+  // "row": (1 - y_i) / (a(row_i) delta_B) of the closed y, and its integral image.
+  cv::Mat reward_;
+  image::IntegralImage reward_integral_;
   cv::Mat closing_workspace_;  // the intermediate dilation, reused across frames
   image::IntegralImage integral_;
 };

@@ -1,0 +1,187 @@
+"""The MB tracker's person size by foot row (size_by_row, issue 12) against the one learnt height
+on PETS09-S2L1 and its 0.5x / 1.5x variants, over seeds: MOTA / IDF1 / HOTA on frames 1-397
+(the tuning split), 398-795 (where the size problem was diagnosed, benchmarks/mb_groups.py) and
+all frames, each setting's mean over the seeds.
+
+    python benchmarks/mb_perspective.py [--variants 768x576,0.5x,1.5x] [--seeds 0,1,2]
+
+    python benchmarks/mb_perspective.py --calibrate --setting "min07:size_by_row=true,size_min=0.7"
+
+(each --setting is a row of MultiBernoulliTracker parameters, NAME:key=value,...; without one the
+rows are the defaults and size_by_row. --calibrate refits the box calibration on frames 1-397 of
+every run but the defaults'.)
+
+Results (2026-11-24, 768 x 576, seeds 0, 1, 2; frames 1-397 are the tuning split, 398-795 the
+half the size problem was diagnosed on, so neither is held out):
+
+| size_by_row | 1-397 | 398-795 | all |
+|---|---|---|---|
+| False (default) | 0.535 / 0.530 / 0.390 | 0.516 / 0.430 / 0.361 | 0.525 / 0.455 / 0.364 |
+| True | 0.304 / 0.507 / 0.354 | 0.362 / 0.411 / 0.322 | 0.333 / 0.454 / 0.335 |
+
+Seed 0 alone, size_by_row: with the box calibration refitted on 1-397 (1.69, 1.36, -0.03, -0.03)
+0.127 / 0.451 / 0.341 on 1-397; with size_min 0.7 and the calibration refitted (1.24, 1.23, 0.00,
+-0.05) 0.492 / 0.494 / 0.368 on 1-397 and 0.376 / 0.377 / 0.323 on 398-795 (constant: 0.572 /
+0.527 / 0.392 and 0.491 / 0.412 / 0.358). So it stays off; the 0.5x / 1.5x variants were not run.
+
+The data hold a line (PETS09's raw foreground y < 0.5, frames 1-400, components of at least a
+third of a person, median height by band of foot rows: 57 px at row 162, 71 at 234, 90 at 306, 115 at 414, a slope of about 0.23 px per row), and
+the constant path is unchanged (same figures as before the option). Why it loses: the filter's box
+is the dark core of a silhouette and, for far people, sits at the lower end of the size clamp.
+Filter box heights by the box's bottom row, seed 0, frames 102-300 (median, px):
+
+| box bottom row | 100-160 | 160-220 | 220-280 | 280-340 | 340-400 |
+|---|---|---|---|---|---|
+| constant h (clamp >= 38 px) | 42 | 44 | 47 | 67 | 82 |
+| size_by_row | 27 | 33 | 44 | 64 | 83 |
+
+With the constant prior the clamp's 0.45 x 85 = 38 px holds far people's boxes near 2/3 of their
+height, which is what the default calibration (x 1.47) was fitted to; with h(y) the clamp follows
+the row down and the far boxes shrink with it, too small for one calibration (in the first
+version below, GT / filter box height 2.0 at 60-80 px against 1.2 at 100-130 px,
+benchmarks/mb_groups.py's Table 3). A first version took the scale at the box's own
+bottom row, which fed back (a smaller box, a higher bottom, a smaller scale): 0.149 MOTA on all
+frames. What is left: a likelihood (or size term) that does not favour the core, so the box size
+follows the person, before a row-dependent prior can pay off.
+
+The likelihood that does not favour the core: delta_b_reference "row" (models/tbd_likelihood.hpp,
+issue 12). Eq. (20)'s reward m_x (1 - ybar) / (m delta_B) grows with the box's pixel count while
+the penalty -ybar / delta_F does not, so the best box takes a border strip of mean y_s iff
+y_s < (k + ybar) / (1 + k), k = m_x delta_F / (m delta_B): about 0.14 for a 60 px PETS09 person
+and 0.73 for a 130 px one. "row" weights each pixel by a / a(row) (the mean person's area over
+that of the person the learnt line expects centred on the row; eq. 14's weighted average, so the
+derivation and f(y)'s cancelling hold), which makes k the same for every person-sized box. The
+unit tests check it on rendered people of one shape at 80, 160 and 320 px (brute-force best box:
+0.54-0.58 of each person with "row", 0.48 far to 0.76 near as printed) and through the tracker
+(box height 0.55 / 0.62 / 0.59 of a 50 / 90 / 140 px person, against 0.44 / 0.58 / 0.79).
+
+On PETS09 it needs size_by_row (alone, seed 0, delta_b 0.35 "person"-equivalent: MOTA -0.20 on all
+frames: with one size range for the whole image a far box grows over several far people's areas
+of faint foreground; validate() now requires it) and a floor on a(row) at the smallest people the
+line was fitted on (without it, the line's extrapolation above them made specks on the top
+fifth's walls and windows worth 8 mean persons' pixels: 131 of seed 0's 763 first-half FPs).
+With both (the calibration refitted on 1-397 for every run, --calibrate; means over seeds 0-2):
+
+| setting | 1-397 | 398-795 | all |
+|---|---|---|---|
+| default (image, 2e-3) | 0.535 / 0.530 / 0.390 | 0.516 / 0.430 / 0.361 | 0.525 / 0.455 / 0.364 |
+| row, size_by_row, delta_b 2e-3 | 0.436 / 0.602 / 0.408 | 0.534 / 0.505 / 0.384 | 0.486 / 0.535 / 0.387 |
+| row, size_by_row, delta_b 3e-3 | 0.456 / 0.604 / 0.411 | 0.543 / 0.550 / 0.410 | 0.500 / 0.558 / 0.400 |
+
+(3e-3 chosen on 1-397 among 2e-3, 3e-3 and, in the earlier "person"-relative form of the option,
+the equivalents of 1.4e-3 (MOTA 0.173 on 1-397) and 4.3e-3 (seed 0: 0.434); calibrations fitted:
+1.69-1.70 x 1.59-1.73 for 3e-3.) The near people of the second half are fitted like the others
+now: benchmarks/mb_groups.py, seed 0, "row" 0.35-equivalent, GT / filter box by GT height 1.93 x
+1.87 (60-80 px), 1.81 x 1.78, 1.69 x 1.69, 1.61-1.74 x 1.07-1.49 (130+ px, two runs) against
+1.73 x 1.56 ... 1.22 x 0.95 with the default; far people (60-80 px) missed 70-94 times per half
+instead of 231-289. What costs MOTA on 1-397 are false positives, 639 against 351 (seed 0): the
+filter now tracks the far people, and MOT15's ground truth leaves some of them out or marks them
+ignore (conf 0), so they count as FP -- a walker on the far path top left (frames 86-174, 89 FP
+boxes, no GT row) and two people at the top right (frames 147-375, 171 FP boxes; conf-0 rows for
+frames 147-244 only). So "row" is better on identities (IDF1 +0.10, HOTA +0.04 on all frames) and
+on the second half's MOTA (+0.03), worse on all frames' MOTA (-0.025, mostly the first half's
+unannotated people). On tests/test_track_video.py's synthetic scenes (seeds 3 / 4, tracker seed
+0, identity box calibration: their GT is the blob's exact box) MOTA 0.905 / 0.941 with 2e-3 and
+0.760 / 0.897 with 3e-3, against 0.935 / 0.941 for the defaults (and 0.931 / 0.941 with
+size_by_row alone): a weaker reward boxes their clean blobs tighter than their exact extent. It
+stays off by the issue's rule (better on all frames and not worse held out).
+Held out (once, seed 0, the 768 x 576 calibration kept: the median of the three fits, 1.692,
+1.651, 0.036, 0.032; the defaults' rows are the same run's):
+
+| variant | setting | 1-397 | 398-795 | all |
+|---|---|---|---|---|
+| 0.5x | default | 0.642 / 0.489 / 0.381 | 0.539 / 0.449 / 0.364 | 0.590 / 0.442 / 0.362 |
+| 0.5x | row, size_by_row, 3e-3 | 0.328 / 0.601 / 0.407 | 0.178 / 0.448 / 0.353 | 0.252 / 0.486 / 0.364 |
+| 1.5x | default | 0.607 / 0.507 / 0.395 | 0.456 / 0.407 / 0.335 | 0.531 / 0.432 / 0.355 |
+| 1.5x | row, size_by_row, 3e-3 | 0.466 / 0.661 / 0.433 | 0.606 / 0.553 / 0.416 | 0.537 / 0.562 / 0.407 |
+
+At 1.5x it is better on every figure of all frames; at 0.5x its MOTA collapses (0.252 against
+0.590; not diagnosed yet -- the far people there are 15-30 px tall, where the weights a / a(row)
+are largest and the closing, which keeps the one h, is 3 x 3). What is left: that 0.5x failure,
+and a ground truth that counts the far people the filter now finds before MOTA can judge it.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(__file__))
+from _foreground import (VARIANTS, apply_calibration, default_gt, default_video,  # noqa: E402
+                         fit_calibration, load_gt, select, transform_gt, variant_video)
+from _table import print_table  # noqa: E402
+from mb_groups import parse_value, run_mb  # noqa: E402
+from vtrack.evaluate import evaluate  # noqa: E402
+
+SPLITS = (("1-397", 1, 397), ("398-795", 398, 795), ("all", 1, 795))
+
+
+def mot_rows(run) -> np.ndarray:
+    rows = [[k + 1, i, *b, 1, -1, -1, -1]
+            for k, f in enumerate(run) for i, b in zip(f["ids"], f["boxes"])]
+    return np.array(rows, float).reshape(-1, 10)
+
+
+def parse_setting(text: str):
+    """NAME or NAME:key=value,key=value -> (name, params)."""
+    name, _, rest = text.partition(":")
+    params = {}
+    for item in filter(None, rest.split(",")):
+        key, _, value = item.partition("=")
+        params[key] = parse_value(value)
+    return name, params
+
+
+DEFAULT_SETTINGS = ("default", "size_by_row:size_by_row=true")
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--variants", default="768x576")
+    parser.add_argument("--seeds", default="0,1,2")
+    parser.add_argument("--setting", action="append", default=[], metavar="NAME[:k=v,...]",
+                        help="a row: MultiBernoulliTracker parameters (default: "
+                             + " and ".join(DEFAULT_SETTINGS) + ")")
+    parser.add_argument("--calibrate", action="store_true",
+                        help="refit the box calibration on frames 1-397 of each run but the "
+                             "defaults'")
+    args = parser.parse_args()
+    video, gt_path = default_video(), default_gt()
+    if not (os.path.exists(video) and os.path.exists(gt_path)):
+        print(f"needs the video ({video}) and the ground truth ({gt_path}); skipped")
+        return
+    seeds = [int(s) for s in args.seeds.split(",")]
+    settings = [parse_setting(t) for t in (args.setting or DEFAULT_SETTINGS)]
+    for name in args.variants.split(","):
+        v = VARIANTS[name]
+        gt = transform_gt(load_gt(gt_path), v)
+        path = variant_video(video, v)
+        table = []
+        for label, extra in settings:
+            calibrate = args.calibrate and bool(extra)
+            scores = []  # [seed][split] = (MOTA, IDF1, HOTA)
+            for seed in seeds:
+                params = dict(seed=seed, **extra)
+                if calibrate:
+                    params.update(box_scale_w=1.0, box_scale_h=1.0, box_offset_x=0.0,
+                                  box_offset_y=0.0)
+                rows = mot_rows(run_mb(path, params))
+                if calibrate:
+                    cal = fit_calibration(select(rows, 1, 397), gt)
+                    print(f"{label} seed {seed} calibration (1-397):",
+                          ", ".join(f"{c:.3f}" for c in cal))
+                    rows = apply_calibration(rows, cal)
+                m = [evaluate(select(gt, a, b), select(rows, a, b)) for _, a, b in SPLITS]
+                scores.append([(s["MOTA"], s["IDF1"], s["HOTA"]) for s in m])
+                cells = [f"{sp[0]} {x[0]:.3f}/{x[1]:.3f}/{x[2]:.3f}"
+                         for sp, x in zip(SPLITS, scores[-1])]
+                print(f"{name} {label} seed {seed}: " + ", ".join(cells), flush=True)
+            mean = np.mean(np.array(scores), axis=0)
+            table.append([label] + ["%.3f / %.3f / %.3f" % tuple(x) for x in mean])
+        print(f"\nPETS09-S2L1 {name}, MB MOTA / IDF1 / HOTA, mean over seeds {args.seeds}\n")
+        print_table(["setting"] + [s[0] for s in SPLITS], table)
+
+if __name__ == "__main__":
+    main()
