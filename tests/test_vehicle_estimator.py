@@ -231,8 +231,9 @@ def test_far_views_do_not_shrink_a_vehicle_under_a_gantry(tmp_path):
     behind one another: in the distance a pixel row is metres of road and following vehicles run
     together into one blob, so a far view's ray reads a length tens of metres too long, as a taller
     vehicle. Regression: every view counted alike, those rays outvoted the near ones and the car
-    of lane 1 came out 1.06 m long (true 4.42 m; max_length_resolution = inf below); views whose
-    length is resolved worse than 2 m per pixel are not used, and every length is within 1 m."""
+    of lane 1 came out 1.06 m long (true 4.42 m; the default, every view, below); with
+    max_length_resolution = 2 views whose length is resolved worse than 2 m per pixel are not
+    used, and every length is within 1 m."""
     from vtrack.synthetic_road import CAMERA_SETUPS
     import dataclasses
     setup = dataclasses.replace(CAMERA_SETUPS["gantry"], focal=450.0, image_width=480, image_height=270)
@@ -240,7 +241,7 @@ def test_far_views_do_not_shrink_a_vehicle_under_a_gantry(tmp_path):
                             lane_speeds=[25.0, 25.0], class_mix={"car": 0.4, "truck": 0.6})
     paths = scene.write(tmp_path / "scene", video="video.mkv")
     truth = {v.id: v for v in scene.vehicles}
-    for params, bound in (({}, 1.0), ({"max_length_resolution": math.inf}, None)):
+    for params, bound in (({"max_length_resolution": 2.0}, 1.0), ({}, None)):
         vehicles, rows = vtrack.vehicles.measure_vehicles(paths["video"], paths["camera"], return_tracks=True,
                                                           **params)
         matched = match_to_truth(paths, rows)

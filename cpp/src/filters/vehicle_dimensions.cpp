@@ -261,8 +261,8 @@ void validate(const VehicleEstimatorParams& p) {
           "a positive finite number (m^3)");
   require(p.border_margin_px >= 0.0 && std::isfinite(p.border_margin_px), "border_margin_px", p.border_margin_px,
           "a finite number >= 0 (pixels)");
-  require(p.max_length_resolution > 0.0, "max_length_resolution", p.max_length_resolution,
-          "a positive number (metres per pixel; inf: every view)");
+  require(p.max_length_resolution >= 0.0, "max_length_resolution", p.max_length_resolution,
+          "a number >= 0 (metres per pixel; 0: every view)");
 }
 
 void RaySums::add(const VehicleObservation& obs, const models::RayLikelihoodParams& p) {
@@ -370,7 +370,7 @@ bool VehicleDimensionEstimator::touches_border(const Eigen::Ref<const Eigen::Mat
 bool VehicleDimensionEstimator::add(Track& t, const VehicleObservation& obs) {
   const auto heights = obs.feasible_heights(min_size_of(params_));
   if (!(heights.first <= heights.second)) return false;  // smaller than min_size from any height
-  if (obs.edge_resolution(1) > params_.max_length_resolution) return false;  // too far to tell its length
+  if (params_.max_length_resolution > 0.0 && obs.edge_resolution(1) > params_.max_length_resolution) return false;  // too far to tell its length
   if (params_.sampler == VehicleSampler::Rays) t.rays.add(obs, params_.likelihood);
   const bool first = t.means.empty();
   t.last = sample_vehicle_frame(obs, prior_, first ? nullptr : &t.last, t.rays, params_, t.rng);

@@ -41,8 +41,8 @@
 //     border, its far-most corner is not the vehicle's and its ray is wrong: it is not used. A ray
 //     whose feasible segment is empty (a silhouette smaller than min_size from any height, e.g. a
 //     degenerate polygon) is not used either. A vehicle with no used frame is reported as never
-//     fully in view, with no dimensions and no class. Nor is a view whose box length is resolved
-//     worse than max_length_resolution metres of road per pixel (VehicleObservation::
+//     fully in view, with no dimensions and no class. Optionally, nor is a view whose box length
+//     is resolved worse than max_length_resolution metres of road per pixel (VehicleObservation::
 //     edge_resolution, near and far edge combined): the ray through the far corner then says
 //     little about the length, yet with S in metres for every view it weighs as much as a near
 //     one; and it is there, in the distance, that perspective runs following vehicles together
@@ -117,11 +117,13 @@ struct VehicleEstimatorParams {
   VehicleDecision decision = VehicleDecision::Auto;
   double border_margin_px = 1.0;  // a silhouette this close to the image border is cut by it
   // Metres of road per pixel (VehicleObservation::edge_resolution of the length) above which a
-  // view is not used (see "frames used"). 2 m: on benchmarks/vehicles.py's gantry tuning scenes
-  // (seeds 200, 300, 400) it took MAE L from 0.75 / 1.00 / 1.45 m to 0.42 / 0.79 / 0.64 m and heavy
-  // from 6/6, 8/9, 4/6 to 6/6, 8/9, 6/6; 1 m kept too few views of receding vehicles (MAE L 0.89 m
-  // on seed 300). Metres, so the same distances are used at any resolution per metre resolved.
-  double max_length_resolution = 2.0;
+  // view is not used (see "frames used"); 0 = every view (the default). 2 m, on
+  // benchmarks/vehicles.py's gantry tuning scenes (seeds 200, 300, 400), took MAE L from
+  // 0.75 / 1.00 / 1.45 m to 0.42 / 0.79 / 0.64 m and heavy from 6/6, 8/9, 4/6 to 6/6, 8/9, 6/6 (held
+  // out, seed 500: 3/7 -> 7/7); but it lost heavies on side (tuning seed 100: 5/5 -> 3/5) and on
+  // mast_low (held out: 7/7 -> 5/7), where a long vehicle may have no view resolved that well, so it
+  // stays off by default. Metres, so the same distances are used at any resolution.
+  double max_length_resolution = 0.0;
   std::uint64_t seed = 0;
 
   static const core::ParameterTable<VehicleEstimatorParams>& table();
