@@ -62,11 +62,59 @@ light / heavy correct, found, fixed sizes -> auto:
 another vehicle (59 of its 123 matched frames went to vehicle 19: their blobs joined and the
 track changed vehicle), and its estimate says L 1.0 m; a later second track on the truck called
 it heavy. The blob tracker's identity through joins, not the estimator, is what fails there.
+
+Issue 13, gantry heavies called light (this session; developed on tuning seeds 100, 200, 300 and a
+new 400, never on 500/600). Cause: under the gantry (7.5 m, looking along its lane) approaching
+vehicles emerge from the distance one behind the other as one blob for tens of frames (a pixel row
+is ~7 m of road at 200 m); those views' far, shallow rays read the tens of metres of extra length
+as a taller vehicle and, S being metres in every view, outvoted the near views, whose rays then
+put L at min_size: cars came out L 1.0-1.3 m with H 2.2-2.6 m (light by luck), the 8.0 m truck of
+seed 300 L 1.0 m. With the exact silhouettes (silhouettes.csv) the same vehicles come out right:
+the segmentation's merged blobs, not the geometry, feed the error. Option (off by default, see
+below): views whose length is resolved worse than max_length_resolution = 2 m of road per pixel
+are not used (`--video-set max_length_resolution=2.0`). Gantry, 40
+vehicles, before -> after (found / light / heavy / MAE W H L m):
+  seed 200  40/40  100 % / 6 of 6 / 0.11 0.15 0.75  ->  40/40  100 % / 6 of 6 / 0.07 0.08 0.42
+  seed 300  38/40  100 % / 8 of 9 / 0.11 0.16 1.00  ->  38/40  100 % / 8 of 9 / 0.10 0.12 0.79
+  seed 400  39/40  100 % / 4 of 6 / 0.22 0.32 1.45  ->  39/40  100 % / 6 of 6 / 0.09 0.09 0.64
+  seed 100 (20 vehicles)  ->  20/20  100 % / 5 of 5 / 0.07 0.14 0.58 (naive 2-D: 73.3 / 100 %)
+Tried and dropped: weighing each view by its pixel footprint instead of dropping it (S + the far
+corner's metres per pixel, the ray's precision as the pseudo-inverse of P (S + E) P): seed 300 MAE
+L 1.00 -> 0.89 m, the L = 1 m collapses stayed; with the exact silhouettes it was worse than the
+paper's S alone (MAE L 0.31 -> 0.39 m: the prior pulls harder). 1 m per pixel instead of 2: too
+few views of receding vehicles (seed 300 MAE L 0.89 m). Restarting a track's estimate when a
+vehicle splits off its blob (a new blob inside its predicted box): fixed one car on seed 300 and
+lost the near views of two trucks when a vehicle behind them appeared; not kept. Left: the truck
+of seed 300 whose track changes vehicle through a blob join (issue 13's identity item).
+Held out, once, with max_length_resolution 2 (then the default) (`--video-only --video-vehicles 40 --video-seed 500|600`;
+seed 600 rendered for gantry, mast_low, mast_high only; found / light / heavy / MAE W H L m /
+naive 2-D light-heavy from the boxes at its oracle threshold):
+  500 gantry          40/40  100.0 % / 7 of 7 (was 3 of 7)  / 0.12 0.10 0.84
+  500 mast_low        38/40   93.5 % / 5 of 7 / 0.28 0.07 0.96   every view: 93.5 % / 7 of 7 / 0.48 0.15 1.29
+  500 mast_high       39/40  100.0 % / 7 of 7 / 0.21 0.11 0.48
+  500 side            39/40   96.9 % / 7 of 7 / 0.29 0.09 0.41
+  500 wide_distorted  38/40   96.9 % / 6 of 6 / 0.21 0.08 0.38
+  600 gantry          40/40  100.0 % / 8 of 8 / 0.10 0.12 0.58   naive 87.5 / 100 %
+  600 mast_low        37/40   89.7 % / 7 of 8 / 0.29 0.08 0.88   naive 82.8 / 100 %; every view:
+                                                                  89.7 % / 7 of 8 / 0.46 0.10 1.26
+  600 mast_high       38/40   93.3 % / 8 of 8 / 0.23 0.13 0.57   naive 100 / 100 %; every view: the same
+The rule fixed the gantry and cut MAE L elsewhere, but on the low mast (6 m, pitch 12 deg) it lost
+two heavies of seed 500 (an articulated lorry with no view resolved to 2 m per pixel is reported
+not fully in view; a truck called light): a hard cut can leave a long vehicle seen by a low camera
+no view at all. Next (to develop on tuning seeds of mast_low): keep a vehicle's best-resolved
+views when none passes. Tuning seed 100 re-run with it: gantry 100 % / 5 of 5, mast_high 100 % /
+5 of 5, side 100 % / 3 of 5 (a truck and a bus called light, a van not in view; every view, last
+session: at or near 100 %), so max_length_resolution is off by default (0: every view, the behaviour before). Still below the bar: light accuracy 89.7-96.9 % on mast_low, side, wide,
+mast_high (cars called heavy), found 92-95 % on mast_low and wide_distorted.
+Estimator cost (exact silhouettes, every 2nd frame, update() from Python, CPU time, median of 5):
+gantry seed 300 23.7 us per vehicle-frame (every view: 47.4 us, same run), mast_high seed 100
+47.4 us (47.3 us): the resolution test costs nothing measurable, and dropped views skip the chain.
 """
 
 import argparse
 import csv
 import dataclasses
+import json
 import os
 import sys
 import tempfile
@@ -253,7 +301,10 @@ def video_scene(name, args):
                 boxes[int(r["frame"])].append(
                     (int(r["vehicle_id"]), (float(r["x"]), float(r["y"]), float(r["w"]), float(r["h"]))))
         n_frames = max(boxes) if boxes else 1
-        return vehicles, tracks, seconds / n_frames, truth, boxes
+        with open(paths["camera"]) as f:
+            image_size = json.load(f)["image_size"]
+        return vehicles, tracks, seconds / n_frames, truth, boxes, (vtrack.vehicles.read_camera_file(paths["camera"]),
+                                                                     image_size)
 
     if args.scene_dir:
         scale = "" if args.video_scale == 1.0 else f"_x{args.video_scale:g}"
@@ -262,10 +313,29 @@ def video_scene(name, args):
         return run(folder)
 
 
+def naive_video(camera, tracks, matched, truth):
+    """The naive 2-D baseline from video: per matched vehicle, the mean along-road extent of the
+    road projection of its image boxes (the pipeline's track rows) off the image border, light/heavy
+    by a length threshold, the best one on this very data (an oracle). -> (light acc, heavy acc)."""
+    cam, (width, height) = camera
+    lengths = defaultdict(list)
+    for _, tid, x, y, w, h, *_ in tracks:
+        if x > 1.0 and y > 1.0 and x + w < width - 2.0 and y + h < height - 2.0:
+            try:
+                box = vtrack.vehicles.observe_vehicle(cam, (x, y, w, h)).box
+            except ValueError:
+                continue
+            lengths[int(tid)].append(box[3] - box[2])
+    pairs = [(truth[gt], float(np.mean(lengths[e["vehicle_id"]]))) for gt, e in matched.items()
+             if lengths.get(e["vehicle_id"])]
+    best = max(np.arange(3.0, 40.0, 0.1), key=lambda t: sum(score([(v, l >= t) for v, l in pairs])[:2]))
+    return score([(v, l >= best) for v, l in pairs])[:2], best
+
+
 def from_video(args):
     rows, extra_rows = [], []
     for name in args.video_setups:
-        vehicles, tracks, per_frame, truth, truth_boxes = video_scene(name, args)
+        vehicles, tracks, per_frame, truth, truth_boxes, camera = video_scene(name, args)
         votes = defaultdict(lambda: defaultdict(int))
         for f, tid, x, y, w, h, *_ in tracks:
             cands = [(iou(b, (x, y, w, h)), vid) for vid, b in truth_boxes.get(int(f), [])]
@@ -282,9 +352,11 @@ def from_video(args):
         la, ha, nl, nh = score(pairs)
         err = np.mean([np.abs([e["W"] - truth[g].W, e["H"] - truth[g].H, e["L"] - truth[g].L])
                        for g, e in matched.items() if e["valid"]], axis=0)
+        (nla, nha), threshold = naive_video(camera, tracks, matched, truth)
         rows.append((name, f"{len(matched)}/{len(visible)} ({100 * len(matched) / len(visible):.0f} %)",
                      len(vehicles), fmt_acc(la, nl), fmt_acc(ha, nh), f"{50 * (la + ha):.1f} %",
-                     *(f"{x:.2f}" for x in err), f"{1e3 * per_frame:.1f}"))
+                     *(f"{x:.2f}" for x in err), f"{1e3 * per_frame:.1f}",
+                     f"{100 * nla:.1f} / {100 * nha:.1f} % (>= {threshold:.1f} m)"))
         # What the reported vehicles beyond one per ground-truth vehicle are.
         kept = {id(e) for e in matched.values()}
         extra = [e for e in vehicles if id(e) not in kept]
@@ -298,7 +370,7 @@ def from_video(args):
     print(f"\nTable 2: end to end from video (the defaults), {args.video_vehicles} vehicles per set-up, "
           f"scene seed {args.video_seed}, resolution x{args.video_scale:g}\n")
     print_table(["set-up", "found", "reported", "light correct", "heavy correct", "mean", "MAE W (m)", "MAE H (m)",
-                 "MAE L (m)", "ms per frame"], rows)
+                 "MAE L (m)", "ms per frame", "naive 2-D light / heavy (oracle threshold)"], rows)
     print("\nTable 3: the reported vehicles beyond one per ground-truth vehicle (a second track of a vehicle "
           "found: not fully in view / with an estimate; a track matching no vehicle (IoU <= 0.5: several "
           "vehicles in one blob): not fully in view / with an estimate), and the found vehicles classified "

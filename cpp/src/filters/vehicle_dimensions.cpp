@@ -241,6 +241,7 @@ const core::ParameterTable<VehicleEstimatorParams>& VehicleEstimatorParams::tabl
                             .add("heavy_volume", &P::heavy_volume)
                             .add_choice("decision", &P::decision, vehicle_decision_names())
                             .add("border_margin_px", &P::border_margin_px)
+                            .add("max_length_resolution", &P::max_length_resolution)
                             .add("seed", &P::seed);
   return t;
 }
@@ -260,6 +261,8 @@ void validate(const VehicleEstimatorParams& p) {
           "a positive finite number (m^3)");
   require(p.border_margin_px >= 0.0 && std::isfinite(p.border_margin_px), "border_margin_px", p.border_margin_px,
           "a finite number >= 0 (pixels)");
+  require(p.max_length_resolution >= 0.0, "max_length_resolution", p.max_length_resolution,
+          "a number >= 0 (metres per pixel; 0: every view)");
 }
 
 void RaySums::add(const VehicleObservation& obs, const models::RayLikelihoodParams& p) {
@@ -367,6 +370,7 @@ bool VehicleDimensionEstimator::touches_border(const Eigen::Ref<const Eigen::Mat
 bool VehicleDimensionEstimator::add(Track& t, const VehicleObservation& obs) {
   const auto heights = obs.feasible_heights(min_size_of(params_));
   if (!(heights.first <= heights.second)) return false;  // smaller than min_size from any height
+  if (params_.max_length_resolution > 0.0 && obs.edge_resolution(1) > params_.max_length_resolution) return false;  // too far to tell its length
   if (params_.sampler == VehicleSampler::Rays) t.rays.add(obs, params_.likelihood);
   const bool first = t.means.empty();
   t.last = sample_vehicle_frame(obs, prior_, first ? nullptr : &t.last, t.rays, params_, t.rng);

@@ -74,13 +74,10 @@ const core::ParameterTable<RayLikelihoodParams>& RayLikelihoodParams::table() {
   return table;
 }
 
-Eigen::Matrix2Xd silhouette_on_road(const Camera& camera, const Eigen::Ref<const Eigen::Matrix2Xd>& polygon,
-                                    double max_edge_px) {
-  if (polygon.cols() < 3) {
-    throw InvalidArgument("silhouette must have at least 3 vertices, got " + std::to_string(polygon.cols()));
-  }
-  if (!polygon.allFinite()) throw InvalidArgument("silhouette vertices must be finite (got NaN or inf)");
-  const Eigen::Matrix2Xd image = camera.has_distortion() ? densify(polygon, max_edge_px) : Eigen::Matrix2Xd(polygon);
+namespace {
+
+// Image points (2 x n) -> road frame (lateral, along), metres.
+Eigen::Matrix2Xd to_road_frame(const Camera& camera, const Eigen::Ref<const Eigen::Matrix2Xd>& image) {
   const Eigen::Matrix2Xd world = camera.image_to_road_points(image, "silhouette vertex");
   Eigen::Matrix2Xd road(2, world.cols());
   road.row(0) = camera.lateral_axis().head<2>().transpose() * world;
@@ -88,11 +85,60 @@ Eigen::Matrix2Xd silhouette_on_road(const Camera& camera, const Eigen::Ref<const
   return road;
 }
 
+// The silhouette's (densified) image vertices.
+Eigen::Matrix2Xd silhouette_vertices(const Camera& camera, const Eigen::Ref<const Eigen::Matrix2Xd>& polygon,
+                                     double max_edge_px) {
+  if (polygon.cols() < 3) {
+    throw InvalidArgument("silhouette must have at least 3 vertices, got " + std::to_string(polygon.cols()));
+  }
+  if (!polygon.allFinite()) throw InvalidArgument("silhouette vertices must be finite (got NaN or inf)");
+  return camera.has_distortion() ? densify(polygon, max_edge_px) : Eigen::Matrix2Xd(polygon);
+}
+
+constexpr double kUnresolved = 1e6;  // metres per pixel where a probe leaves the road (the horizon)
+
+// Metres per pixel of road coordinate `axis` (0 lateral, 1 along) at image point p: the norm of
+// that coordinate's gradient in the image (central differences of +-0.25 px).
+double metres_per_pixel(const Camera& camera, const Eigen::Vector2d& p, int axis) {
+  constexpr double h = 0.25;
+  Eigen::Matrix2Xd probes(2, 4);
+  probes << p.x() - h, p.x() + h, p.x(), p.x(), p.y(), p.y(), p.y() - h, p.y() + h;
+  try {
+    const Eigen::Matrix2Xd road = to_road_frame(camera, probes);
+    const double du = (road(axis, 1) - road(axis, 0)) / (2 * h), dv = (road(axis, 3) - road(axis, 2)) / (2 * h);
+    return std::min(kUnresolved, std::hypot(du, dv));
+  } catch (const InvalidArgument&) {
+    return kUnresolved;
+  }
+}
+
+// VehicleObservation::edge_resolution (see the header).
+Eigen::Vector2d edge_resolution(const Camera& camera, const Eigen::Matrix2Xd& image, const Eigen::Matrix2Xd& road) {
+  Eigen::Vector2d out;
+  for (int axis = 0; axis < 2; ++axis) {
+    Eigen::Index lo = 0, hi = 0;
+    road.row(axis).minCoeff(&lo);
+    road.row(axis).maxCoeff(&hi);
+    out(axis) = std::min(kUnresolved, std::hypot(metres_per_pixel(camera, image.col(lo), axis),
+                                                 metres_per_pixel(camera, image.col(hi), axis)));
+  }
+  return out;
+}
+
+}  // namespace
+
+Eigen::Matrix2Xd silhouette_on_road(const Camera& camera, const Eigen::Ref<const Eigen::Matrix2Xd>& polygon,
+                                    double max_edge_px) {
+  return to_road_frame(camera, silhouette_vertices(camera, polygon, max_edge_px));
+}
+
 VehicleObservation observe_silhouette(const Camera& camera, const Eigen::Ref<const Eigen::Matrix2Xd>& polygon,
                                       const RayLikelihoodParams& params) {
   validate(params);
   VehicleObservation obs;
-  obs.road_polygon = silhouette_on_road(camera, polygon, params.max_edge_px);
+  const Eigen::Matrix2Xd image = silhouette_vertices(camera, polygon, params.max_edge_px);
+  obs.road_polygon = to_road_frame(camera, image);
+  obs.edge_resolution = edge_resolution(camera, image, obs.road_polygon);
   const Eigen::Vector2d lo = obs.road_polygon.rowwise().minCoeff();
   const Eigen::Vector2d hi = obs.road_polygon.rowwise().maxCoeff();
   obs.box = {lo(0), hi(0), lo(1), hi(1)};

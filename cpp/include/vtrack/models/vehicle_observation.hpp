@@ -92,6 +92,11 @@ struct VehicleObservation {
   Eigen::Vector3d a;                // far-most corner in WHL: (box width, 0, box length)
   Eigen::Vector3d b;                // optical centre in WHL, clamped to 0 on "within" axes
   Eigen::Matrix4d plucker;          // L = a b^T - b a^T, a and b homogeneous (w = 1)
+  // Metres of road per pixel of the box's extents (width, length): at the two vertices that make
+  // each extent (its smallest and largest coordinate), the norm of that road coordinate's row of
+  // the image -> road Jacobian, combined as sqrt(r_near^2 + r_far^2). Centimetres near the
+  // camera, metres near the horizon; 1e6 within a pixel of the horizon.
+  Eigen::Vector2d edge_resolution = Eigen::Vector2d::Zero();
 
   // World point(s) -> WHL coordinates (3 x n) and back.
   Eigen::Matrix3Xd to_whl(const Eigen::Ref<const Eigen::Matrix3Xd>& world) const;
