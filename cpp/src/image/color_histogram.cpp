@@ -25,13 +25,6 @@ Rect clip_to(const Rect& r, int cols, int rows) {
               static_cast<int>(y1 - y0)};
 }
 
-Rect intersect(const Rect& a, const Rect& b) {
-  const int x0 = std::max(a.x, b.x), y0 = std::max(a.y, b.y);
-  const int x1 = std::min(a.x + a.width, b.x + b.width);
-  const int y1 = std::min(a.y + a.height, b.y + b.height);
-  return Rect{x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0)};
-}
-
 // A box coordinate rounded to the pixel grid: floor(v + 0.5), with non-finite values and values
 // beyond +-2^29 pinned so the int conversion and the difference of two such values are defined
 // (such boxes are far outside any frame).

@@ -152,10 +152,8 @@ double TbdLikelihood::row_reward(const image::Rect& r,
   double sum = reward_integral_.sum(r);
   // Pixels inside an explained region are background (eq. 13): they earn nothing.
   for (const image::Rect& e : explained) {
-    const int x0 = std::max(r.x, e.x), y0 = std::max(r.y, e.y);
-    const int x1 = std::min(r.x + r.width, e.x + e.width);
-    const int y1 = std::min(r.y + r.height, e.y + e.height);
-    if (x1 > x0 && y1 > y0) sum -= reward_integral_.sum({x0, y0, x1 - x0, y1 - y0});
+    const image::Rect o = image::intersect(r, e);
+    if (o.width > 0 && o.height > 0) sum -= reward_integral_.sum(o);
   }
   // Overlapping explained regions are removed twice there: the reward is at least 0.
   return std::max(sum, 0.0);
@@ -169,11 +167,8 @@ double TbdLikelihood::explained_sum(const image::Rect& rect,
   double sum = integral_.sum(r);
   // Pixels of r inside an explained region count as 1 (eq. 13): add area - sum of the overlap.
   for (const image::Rect& e : explained) {
-    const int x0 = std::max(r.x, e.x), y0 = std::max(r.y, e.y);
-    const int x1 = std::min(r.x + r.width, e.x + e.width);
-    const int y1 = std::min(r.y + r.height, e.y + e.height);
-    if (x1 <= x0 || y1 <= y0) continue;
-    const image::Rect o{x0, y0, x1 - x0, y1 - y0};
+    const image::Rect o = image::intersect(r, e);
+    if (o.width == 0 || o.height == 0) continue;
     sum += static_cast<double>(o.width) * o.height - integral_.sum(o);
   }
   // Explained regions that overlap each other would be counted twice there: cap at "all

@@ -15,6 +15,14 @@ struct Rect {
   int height = 0;
 };
 
+// The pixels two rects share (width or height 0 when they share none).
+inline Rect intersect(const Rect& a, const Rect& b) {
+  const int x0 = a.x > b.x ? a.x : b.x, y0 = a.y > b.y ? a.y : b.y;
+  const int x1 = a.x + a.width < b.x + b.width ? a.x + a.width : b.x + b.width;
+  const int y1 = a.y + a.height < b.y + b.height ? a.y + a.height : b.y + b.height;
+  return Rect{x0, y0, x1 > x0 ? x1 - x0 : 0, y1 > y0 ? y1 - y0 : 0};
+}
+
 class IntegralImage {
  public:
   IntegralImage() = default;
