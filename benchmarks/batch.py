@@ -37,11 +37,18 @@ The three sequential loops each run in a fresh process, so that nothing of the c
 clients of earlier rows (Dask's event loop and profiler threads) runs beside them or is charged to
 them. (Measured in session 7, it made no difference: 1.14-1.16 cores either way.)
 
-What a sequential loop uses: ~1.15 cores even with threads=1. OpenCV's pool (TBB) runs the person
-size estimator's connected-components labelling in parallel (cv::connectedComponentsWithStats has
-no per-call thread setting; perf of the second thread: OpenCV imgproc and TBB's yield loop), and
-FFmpeg decodes on its own threads. So on 2 cores, 2 workers doing the same work per frame can reach
-at most ~2 / 1.15 = 1.74x the sequential loop. Until session 7 the bar was checked against the loop
+What a sequential loop used until session 7: ~1.15 cores even with threads=1. OpenCV's pool (TBB)
+ran the person size estimator's connected-components statistics in parallel
+(cv::connectedComponentsWithStats has no per-call thread setting; perf of the second thread: OpenCV
+imgproc and TBB's yield loop). On a 768 x 576 mask of 12 person-sized blobs, OpenCV 4.6's
+connectedComponentsWithStats cost 1.3 ms of CPU on 2 threads and 3.3 ms on 1 (its statistics
+pass; BBDT 1.4 ms on either), cv::connectedComponents alone 0.46 ms. The estimator now labels with
+cv::connectedComponents and gathers the boxes and areas itself over the foreground pixels
+(image::connected_components, equal to OpenCV's statistics): perf of the MB pipeline on two
+100-frame vtest clips, OpenCV imgproc 0.45 s -> 0.22 s + 0.08 s for the statistics pass, and the
+second thread's share of the loop from ~8 % to ~2 % of the main thread's CPU. So on 2 cores,
+2 workers doing the same work per frame can now reach ~2 / 1.03 = 1.9x the sequential loop
+(before: ~2 / 1.15 = 1.74x). Until session 7 the bar was checked against the loop
 run in a process pinned to one core (1.92-2.00x), which is a weaker reference: pinning made the
 loop ~10 % slower in CPU seconds than one unpinned core would be.
 
