@@ -193,6 +193,7 @@ one panel per tracker, missed-detection bursts shaded.
 """
 
 import argparse
+import ast
 import os
 import sys
 import time
@@ -247,8 +248,8 @@ ABLATIONS = {
 C = 1.0  # OSPA cut-off (m)
 
 
-def run(scene, spec, particles, depth_params):
-    tracker = scene.tracker(**spec, particles=particles, seed=scene.seed,
+def run(scene, spec, particles, depth_params, overrides=None):
+    tracker = scene.tracker(**{**spec, **(overrides or {})}, particles=particles, seed=scene.seed,
                             depth_params=depth_params if spec["switching"] else None)
     frames, seconds = [], []
     for k, z in enumerate(scene.detections):
@@ -355,6 +356,9 @@ def main():
                         help="also run the switching model without its two deviations")
     parser.add_argument("--switching-only", action="store_true",
                         help="only the switching tracker (for parameter sweeps)")
+    parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                        help="a GlmbTracker parameter for every tracker (repeatable; a Python "
+                        "literal, e.g. label_duplicate_gate=11.34)")
     parser.add_argument("--figure", default="demo-output/rgbd_switching.png")
     parser.add_argument("--figure-seed", type=int, default=0)
     args = parser.parse_args()
@@ -365,6 +369,10 @@ def main():
                          else defaults["sigma_target"]),
         "sigma_background": (args.sigma_background if args.sigma_background is not None
                              else defaults["sigma_background"])}
+    overrides = {}
+    for item in args.set:
+        name, _, value = item.partition("=")
+        overrides[name.strip()] = ast.literal_eval(value.strip())
     methods = dict(METHODS, **(ABLATIONS if args.ablations else {}))
     if args.switching_only:
         methods = {k: v for k, v in methods.items() if v["switching"]}
@@ -374,7 +382,7 @@ def main():
         scene = make_rgbd_scene(seed=seed, frames=args.frames)
         kept = {}
         for method, spec in methods.items():
-            frames, ms = run(scene, spec, args.particles, depth_params)
+            frames, ms = run(scene, spec, args.particles, depth_params, overrides)
             per_method[method].append({**score(scene, frames), "ms": ms})
             kept[method] = frames
         if seed == args.figure_seed and args.figure:
@@ -394,7 +402,8 @@ def main():
     last_seed = args.first_seed + args.seeds - 1
     print(f"RGB-D switching observation model, seeds {args.first_seed}-{last_seed} x "
           f"{args.frames} frames, "
-          f"{args.particles} particles/track, depth model {depth_params}; medians over seeds "
+          f"{args.particles} particles/track, depth model {depth_params}"
+          + (f", every tracker with {overrides}" if overrides else "") + "; medians over seeds "
           "(totals in brackets)\n")
     print_table(["tracker", "OSPA (m)", "OSPA(2) (m)", "label switches", "fragmentations",
                  "IDSW (TrackEval)", "Frag (TrackEval)", "IDF1", "bursts kept/relab./lost",
