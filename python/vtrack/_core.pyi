@@ -453,6 +453,7 @@ class ReclusteringSirTracker:
         size_std: float = 0.25,
         size_min: float = 0.45,
         size_max: float = 2.0,
+        size_by_row: bool = True,
         sigma_xy: float = 0.03,
         sigma_velocity: float = 0.02,
         sigma_wh: float = 0.04,
