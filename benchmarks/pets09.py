@@ -122,6 +122,32 @@ with novelty_sigma 0.35 (0.482 / 0.471, 0.456 / 0.488: within the seeds' spread)
 (0.281 / 0.368), rho 0.01 / 1 (0.297 / 0.373, 0.344 / 0.399), size_from_foreground 1.0 / 1.15
 (0.446 / 0.452, 0.476 / 0.430). The box calibration is the median of the three seeds' fits.
 
+Issue 12 part 1, second pass (benchmarks/sir_tuning.py: the same protocol, scripted, with the
+second half and all frames scored under the calibration fitted on 1-397; MOTA / IDF1, mean of
+seeds 0-2). Diagnosis of the defaults above (0.491 / 0.411, 0.396 / 0.477, 0.443 / 0.415 on
+1-397 / 398-795 / all; FP 1408, FN 1024, 63 ID switches on all frames): of the false positives,
+~890 were boxes on a person at IoU < 0.5 (617 in the second half) and ~440 on nobody (mostly the
+KDE ghosts of the people in view at frame 0, ~70 frames each); the second half's were people
+near the camera, up to twice the median height, cut by re-clustering into two to six
+person-sized objects.
+
+| change (cumulative)                                                     | 1-397         | 398-795       | all           |
+|-------------------------------------------------------------------------|---------------|---------------|---------------|
+| defaults above                                                          | 0.491 / 0.411 | 0.396 / 0.477 | 0.443 / 0.415 |
+| size_by_row: every person size at the ellipse's row (learnt line)       | 0.504 / 0.485 | 0.686 / 0.494 | 0.596 / 0.476 |
+| relabel_overlap 0.1 (0.3): re-founded objects take the lost label       | 0.502 / 0.527 | 0.699 / 0.522 | 0.602 / 0.499 |
+
+Not adopted (single changes from the size_by_row row; all frames): merge_size 1.1 / 1.6 (0.577 /
+0.438, 0.565 / 0.391), merge_distance 0.9 / 1.5 (0.586 / 0.403, 0.557 / 0.406), novelty_sigma
+0.25 / 0.5 (0.576 / 0.418, 0.579 / 0.428), gate 1.2 / 2.0 (0.558 / 0.439, 0.570 / 0.471),
+max_misses 5 (0.567 / 0.460), lost_memory 60 (0.596 / 0.479), confirm_frames 3 (0.592 /
+0.468), shape_weight 0.2 / 0.05 (0.564 / 0.469, 0.577 / 0.417), keep_fraction 0.2 (0.581 /
+0.473), min_object_fraction 0.5 (0.565 / 0.418); the KDE's closing 5 (0.562 / 0.456),
+update_max_skips 1 / 2 (0.601 / 0.443, 0.594 / 0.444). From the relabel_overlap row:
+relabel_overlap 0.05 (0.602 / 0.501), lost_memory 60 / 100 (0.601 / 0.495, 0.602 / 0.495), gate
+2.0 (0.575 / 0.488), max_misses 2 (0.582 / 0.443), size_max 1.5 / 1.3 (0.592 / 0.449, 0.622 /
+0.478: the width range then no longer spans a pair, which gains MOTA and loses identities).
+
 TUNING
 
 The baselines (--tune; 2026-11, trackers 2.6.1, sort-track 0.0.8): a

@@ -37,12 +37,14 @@ from vtrack.io import mot_rows, read_mot  # noqa: E402
 RAW_BOX = dict(box_scale_w=1.0, box_scale_h=1.0, box_offset_x=0.0, box_offset_y=0.0)
 
 
-def foreground(video: str) -> np.ndarray:
-    """(frames, H, W/8) uint8: np.packbits of y < 0.5 along the rows, cached."""
-    path = CACHE / "sir-foreground-768x576.npy"
+def foreground(video: str, background: dict) -> np.ndarray:
+    """(frames, H, W/8) uint8: np.packbits of y < 0.5 along the rows, cached per set of
+    KdeBackground keywords (`background`, the defaults when empty)."""
+    tag = "".join(f"-{k}={v}" for k, v in sorted(background.items()))
+    path = CACHE / f"sir-foreground-768x576{tag}.npy"
     if path.exists():
         return np.load(path)
-    kde = vtrack.KdeBackground()
+    kde = vtrack.KdeBackground(**background)
     masks = [np.packbits(kde.apply(f) < 0.5, axis=1) for f in read_frames(video)]
     out = np.stack(masks)
     np.save(path, out)
@@ -67,7 +69,8 @@ def scores(gt: np.ndarray, tracks: np.ndarray) -> dict:
         clear = trackeval.metrics.CLEAR({"PRINT_CONFIG": False}).eval_sequence(data)
         ident = trackeval.metrics.Identity({"PRINT_CONFIG": False}).eval_sequence(data)
     return {"MOTA": float(clear["MOTA"]), "IDF1": float(ident["IDF1"]),
-            "FP": int(clear["CLR_FP"]), "FN": int(clear["CLR_FN"]), "IDSW": int(clear["IDSW"])}
+            "FP": int(clear["CLR_FP"]), "FN": int(clear["CLR_FN"]), "IDSW": int(clear["IDSW"]),
+            "IDs": int(data["num_tracker_ids"])}
 
 
 def low_iou_share(gt: np.ndarray, tracks: np.ndarray) -> float:
@@ -100,6 +103,8 @@ def main(argv=None) -> int:
     parser.add_argument("--seeds", default="0,1,2")
     parser.add_argument("--last", type=int, default=397)
     parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE")
+    parser.add_argument("--background", action="append", default=[], metavar="NAME=VALUE",
+                        help="a KdeBackground keyword (the foreground is cached per set)")
     parser.add_argument("--box-iou", action="store_true")
     args = parser.parse_args(argv)
     video, gt_path = default_video(), default_gt()
@@ -107,7 +112,8 @@ def main(argv=None) -> int:
         print("sir_tuning: video or ground truth missing; skipped")
         return 0
     params = {k: parse_value(v) for k, v in (s.split("=", 1) for s in args.set)}
-    masks = foreground(video)
+    background = {k: parse_value(v) for k, v in (s.split("=", 1) for s in args.background)}
+    masks = foreground(video, background)
     gt = read_mot(gt_path)
     halves = {"1-397": (1, 397)}
     if args.last > 397:
@@ -126,11 +132,11 @@ def main(argv=None) -> int:
         print(f"seed {seed}: " + "  ".join(
             f"{n} {r[-1]['MOTA']:.3f} / {r[-1]['IDF1']:.3f}" for n, r in table.items()),
             flush=True)
-    print(f"params {params}  ({time.process_time() - start:.0f} s CPU)")
+    print(f"params {params} background {background}  ({time.process_time() - start:.0f} s CPU)")
     for name, runs in table.items():
         mean = {k: np.mean([r[k] for r in runs]) for k in runs[0]}
         print(f"  {name:8s} MOTA {mean['MOTA']:.3f}  IDF1 {mean['IDF1']:.3f}  FP {mean['FP']:.0f}"
-              f"  FN {mean['FN']:.0f}  IDSW {mean['IDSW']:.0f}")
+              f"  FN {mean['FN']:.0f}  IDSW {mean['IDSW']:.0f}  IDs {mean['IDs']:.0f}")
     print("  calibration (median of the seeds' fits): "
           + ", ".join(f"{v:.3f}" for v in np.median(np.array(cals), axis=0)))
     if shares:

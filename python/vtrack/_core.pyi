@@ -459,11 +459,11 @@ class ReclusteringSirTracker:
         sigma_wh: float = 0.04,
         confirm_frames: int = 5,
         lost_memory: int = 30,
-        relabel_overlap: float = 0.3,
-        box_scale_w: float = 0.98,
-        box_scale_h: float = 0.96,
-        box_offset_x: float = 0.0,
-        box_offset_y: float = 0.03,
+        relabel_overlap: float = 0.1,
+        box_scale_w: float = 1.06,
+        box_scale_h: float = 0.93,
+        box_offset_x: float = 0.01,
+        box_offset_y: float = -0.06,
         seed: int = 0,
     ) -> None: ...
     def step(self, y: npt.NDArray[np.float32]) -> Tracks: ...
