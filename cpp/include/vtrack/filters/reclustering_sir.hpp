@@ -56,7 +56,8 @@
 //      as MultiBernoulliParams).
 //
 // No pixel-size default: every size is relative to the people's height h, learnt from the
-// scene's foreground (models::ForegroundSizeEstimator, as the multi-Bernoulli tracker does).
+// scene's foreground (models::ForegroundSizeEstimator, as the multi-Bernoulli tracker does), and
+// with size_by_row (default) taken at each ellipse's row from the learnt height-by-foot-row line.
 #include <algorithm>
 #include <cstdint>
 #include <vector>
