@@ -87,7 +87,9 @@ The re-clustering SIR (issue 12 part 1), measured again 2026-11-24 23:25 after i
 pass (size_by_row, relabel_overlap 0.1; the table at the end of this paragraph's tuning notes):
 `vtrack track vtest.avi --method sir --set threads=1 --seed S` pinned to one core with taskset,
 795 frames in 13.7 / 13.1 / 13.2 s CPU for seeds 0 / 1 / 2 (58-61 frames/s end to end with
-decoding, the frames/s column's 58.2 is seed 0's; wall time on the shared machine was 20-28 s);
+decoding, the frames/s column's 58.2 is seed 0's; wall time on the shared machine was 20-28 s;
+after merging main's faster person-size statistics the same command gives byte-identical tracks
+in 12.2 s CPU, 65 frames/s);
 its rows above are `--methods "vtrack SIR" --variants 768x576,0.5x,1.5x` (seed 0; the same output
 as the CLI's; that run's frames/s are wall-clock on a loaded machine, 23.8 at 768 x 576). On all
 frames at 768 x 576: MOTA 0.589, IDF1 0.454 (seeds 1 / 2 through the CLI: 0.585 / 0.458, 0.591 /
