@@ -65,6 +65,7 @@ const core::ParameterTable<ReclusteringSirParams>& ReclusteringSirParams::table(
           .add("merge_size", &P::merge_size)
           .add("max_misses", &P::max_misses)
           .include(&P::size)
+          .add("size_by_row", &P::size_by_row)
           .add("sigma_xy", &P::sigma_xy)
           .add("sigma_velocity", &P::sigma_velocity)
           .add("sigma_wh", &P::sigma_wh)
@@ -163,6 +164,7 @@ ReclusteringSir::ReclusteringSir(int width, int height, const ReclusteringSirPar
       motion_(make_motion(0, 0, 0)), management_(params.management) {
   if (width < 1) throw InvalidArgument("width must be >= 1, got " + std::to_string(width));
   if (height < 1) throw InvalidArgument("height must be >= 1, got " + std::to_string(height));
+  person_height_.set_fit_line(params_.size_by_row);
   set_person_height(person_height_.height());
   initialise();
 }
@@ -170,6 +172,21 @@ ReclusteringSir::ReclusteringSir(int width, int height, const ReclusteringSirPar
 void ReclusteringSir::set_person_height(double h) {
   person_h_ = std::max(h, 2.0);  // axes of at least a pixel whatever the scale
   grid_ = std::max(1, static_cast<int>(std::lround(params_.grid_step * person_h_)));
+  row_scale_.clear();
+  if (params_.size_by_row && person_height_.by_row()) {
+    // The scale of a person centred on row r: h at its foot row r + (half its height there),
+    // one fixed-point step (as the multi-Bernoulli tracker's centre_row_scale), no smaller than
+    // the smallest people the line was fitted on (above their rows the line's extrapolation would
+    // make specks on walls and tree tops person-sized).
+    const double smallest = person_height_.smallest_seen() / person_h_;
+    const auto at_foot = [&](double row) { return person_height_.height_at_foot(row) / person_h_; };
+    row_scale_.resize(std::size_t(height_));
+    for (int r = 0; r < height_; ++r) {
+      const double half = 0.5 * person_h_;
+      const double s = std::max(smallest, at_foot(r + half * at_foot(r + half)));
+      row_scale_[std::size_t(r)] = float(s);
+    }
+  }
   motion_ = make_motion(params_.sigma_xy * person_h_, params_.sigma_velocity * person_h_,
                         0.5 * params_.sigma_wh * person_h_);
 }
@@ -177,22 +194,22 @@ void ReclusteringSir::set_person_height(double h) {
 float ReclusteringSir::gate_d2(const Object& o, float x, float y) const {
   // The estimate's axes, but never below the person size's: an ellipse that has shrunk onto part
   // of a person still gathers the whole person's pixels, the evidence it needs to grow back.
-  const float a = std::max(o.estimate[4], float(0.5 * params_.size.size_aspect * person_h_));
-  const float b = std::max(o.estimate[5], float(0.5 * person_h_));
+  const Eigen::Vector2f person = half_size(o.estimate[1]);
+  const float a = std::max(o.estimate[4], person[0]);
+  const float b = std::max(o.estimate[5], person[1]);
   const float dx = (x - o.estimate[0]) / a, dy = (y - o.estimate[1]) / b;
   return dx * dx + dy * dy;
 }
 
-double ReclusteringSir::expected_points() const {
+double ReclusteringSir::expected_points(float s) const {
   const double hw = 0.5 * params_.size.size_aspect * person_h_, hh = 0.5 * person_h_;
-  return kPi * hw * hh / (double(grid_) * grid_);
+  return kPi * hw * hh * double(s) * double(s) / (double(grid_) * grid_);
 }
 
 void ReclusteringSir::initialise() {
   // §2.2: centres uniform over the image, velocities around zero, axes uniform in the expected
   // size range; no object owns them (cluster 0).
   const int n = params_.n_particles;
-  const double hw = 0.5 * params_.size.size_aspect * person_h_, hh = 0.5 * person_h_;
   const double sv = params_.sigma_velocity * person_h_;
   Particles::States x(n, 6);
   for (int i = 0; i < n; ++i) {
@@ -200,8 +217,9 @@ void ReclusteringSir::initialise() {
     x(i, 1) = float(rng_.uniform(0.0, height_));
     x(i, 2) = float(sv * rng_.normal());
     x(i, 3) = float(sv * rng_.normal());
-    x(i, 4) = float(rng_.uniform(params_.size.size_min * hw, params_.size.size_max * hw));
-    x(i, 5) = float(rng_.uniform(params_.size.size_min * hh, params_.size.size_max * hh));
+    const Eigen::Vector2d half = half_size(x(i, 1)).cast<double>();  // the range at its row
+    x(i, 4) = float(rng_.uniform(params_.size.size_min * half[0], params_.size.size_max * half[0]));
+    x(i, 5) = float(rng_.uniform(params_.size.size_min * half[1], params_.size.size_max * half[1]));
   }
   particles_ = Particles(std::move(x));
   clusters_.assign(std::size_t(n), 0);
@@ -251,10 +269,14 @@ void ReclusteringSir::predict() {
   motion_.propagate(models::StatesView<float>(particles_.states()),
                     models::StatesView<float>(eps_), models::MutableStatesView<float>(next_));
   std::swap(particles_.states(), next_);
-  const float hw = float(0.5 * params_.size.size_aspect * person_h_), hh = float(0.5 * person_h_);
+  // The axes stay in the size range of a person at the particle's row.
   auto& x = particles_.states();
-  x.col(4) = x.col(4).cwiseMax(float(params_.size.size_min) * hw).cwiseMin(float(params_.size.size_max) * hw);
-  x.col(5) = x.col(5).cwiseMax(float(params_.size.size_min) * hh).cwiseMin(float(params_.size.size_max) * hh);
+  const float lo = float(params_.size.size_min), hi = float(params_.size.size_max);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Eigen::Vector2f half = half_size(x(i, 1));
+    x(i, 4) = std::clamp(x(i, 4), lo * half[0], hi * half[0]);
+    x(i, 5) = std::clamp(x(i, 5), lo * half[1], hi * half[1]);
+  }
 }
 
 void ReclusteringSir::associate() {
@@ -277,17 +299,18 @@ void ReclusteringSir::associate() {
 void ReclusteringSir::weigh() {
   const Eigen::Index n = particles_.size();
   const auto& x = particles_.states();
-  const float sx = float(params_.novelty_sigma * 0.5 * params_.size.size_aspect * person_h_);
-  const float sy = float(params_.novelty_sigma * 0.5 * person_h_);
+  const float sigma = float(params_.novelty_sigma);
   Eigen::VectorXd log_lik(n);
   for (Eigen::Index i = 0; i < n; ++i) {
     const auto& zs = zsets_[std::size_t(clusters_[std::size_t(i)])];
+    // C normalises the dimensions of a person at the particle's row.
+    const Eigen::Vector2f c = sigma * half_size(x(i, 1));
     // An object without measurements learns nothing this step (its weights are kept).
     // The two external factors of §2.1 raised to 1 + shape_weight N (see the parameter).
     const double power = 1.0 + params_.shape_weight * double(zs.cols());
     log_lik[i] = zs.cols() == 0 ? 0.0
                                 : ellipse_log_likelihood(x(i, 0), x(i, 1), x(i, 4), x(i, 5), zs,
-                                                         params_.rho, sx, sy, power);
+                                                         params_.rho, c[0], c[1], power);
   }
   reweight_per_cluster(log_lik);
 }
@@ -351,14 +374,15 @@ void ReclusteringSir::update_estimates() {
 void ReclusteringSir::novel_measurements(std::vector<int>& novel,
                                          std::vector<double>& novelty) const {
   // The novelty distribution n(z_j) = prod_m (1 - h(z_j | xhat_m)) over the objects' estimates.
-  const float sx = float(params_.novelty_sigma * 0.5 * params_.size.size_aspect * person_h_);
-  const float sy = float(params_.novelty_sigma * 0.5 * person_h_);
+  std::vector<Eigen::Vector2f> c;
+  for (const auto& o : objects_) c.push_back(float(params_.novelty_sigma) * half_size(o.estimate[1]));
   novel.clear();
   novelty.clear();
   for (Eigen::Index j = 0; j < z_.cols(); ++j) {
     double nz = 1.0;
-    for (const auto& o : objects_) {
-      const float dx = (z_(0, j) - o.estimate[0]) / sx, dy = (z_(1, j) - o.estimate[1]) / sy;
+    for (std::size_t k = 0; k < objects_.size(); ++k) {
+      const auto& o = objects_[k];
+      const float dx = (z_(0, j) - o.estimate[0]) / c[k][0], dy = (z_(1, j) - o.estimate[1]) / c[k][1];
       nz *= 1.0 - std::exp(-0.5 * double(dx * dx + dy * dy));
     }
     if (nz > params_.novelty_threshold) {
@@ -371,8 +395,9 @@ void ReclusteringSir::novel_measurements(std::vector<int>& novel,
 Eigen::Vector2f ReclusteringSir::novel_centroid(const std::vector<int>& novel,
                                                 Eigen::Vector2f centre) const {
   // Two mean-shift steps: the centroid of the novel measurements within a person's ellipse.
-  const double hw = 0.5 * params_.size.size_aspect * person_h_, hh = 0.5 * person_h_;
   for (int it = 0; it < 2; ++it) {
+    const Eigen::Vector2d half = half_size(centre[1]).cast<double>();
+    const double hw = half[0], hh = half[1];
     Eigen::Vector2d sum = Eigen::Vector2d::Zero();
     int count = 0;
     for (const int j : novel) {
@@ -399,8 +424,9 @@ int ReclusteringSir::nearest_gate(float x, float y) const {
   return k_best + 1;
 }
 
-int ReclusteringSir::found_object(const State& s, const std::vector<int>& novel,
-                                  double min_points) {
+int ReclusteringSir::found_object(const State& s, const std::vector<int>& novel) {
+  const double min_points =
+      std::max(1.0, params_.min_object_fraction * expected_points(count_scale(s[1])));
   int inside = 0;
   for (const int j : novel) inside += ellipse_d2(s, z_(0, j), z_(1, j)) <= 1.0f ? 1 : 0;
   if (double(inside) < min_points) return -1;
@@ -413,7 +439,7 @@ int ReclusteringSir::found_object(const State& s, const std::vector<int>& novel,
 }
 
 void ReclusteringSir::place_best_free(const Particles::States& x, const Eigen::VectorXd& lw,
-                                      const std::vector<int>& novel, double min_points) {
+                                      const std::vector<int>& novel) {
   Eigen::Index best = -1;
   for (Eigen::Index i = 0; i < x.rows(); ++i) {
     if (clusters_[std::size_t(i)] == 0 && (best < 0 || lw[i] > lw[best])) best = i;
@@ -421,12 +447,13 @@ void ReclusteringSir::place_best_free(const Particles::States& x, const Eigen::V
   if (best < 0) return;
   const State s = x.row(best).transpose();
   const int gate = nearest_gate(s[0], s[1]);
-  const int c = gate > 0 ? gate : found_object(s, novel, min_points);
+  const int c = gate > 0 ? gate : found_object(s, novel);
   if (c > 0) clusters_[std::size_t(best)] = c;
 }
 
 ReclusteringSir::State ReclusteringSir::injection_state(const Eigen::Vector2f& centre) {
-  const double hw = 0.5 * params_.size.size_aspect * person_h_, hh = 0.5 * person_h_;
+  const Eigen::Vector2d half = half_size(centre[1]).cast<double>();
+  const double hw = half[0], hh = half[1];
   const double sxy = params_.sigma_xy * person_h_, sv = params_.sigma_velocity * person_h_;
   const auto axis = [&](double prior) {
     return float(std::clamp(prior * (1.0 + params_.size.size_std * rng_.normal()),
@@ -493,13 +520,14 @@ void ReclusteringSir::inject() {
   std::vector<int> novel;
   std::vector<double> novelty;
   novel_measurements(novel, novelty);
+  // Enough novel measurements for a person anywhere (found_object checks its row).
   const double min_points = std::max(1.0, params_.min_object_fraction * expected_points());
   if (double(novel.size()) < min_points) return;
   Particles::States x = particles_.states();
   Eigen::VectorXd lw = particles_.log_weights();
   // §2.2's free particles: the most likely one may found an object (the initialisation's path to
   // the first objects; injection is the other).
-  place_best_free(x, lw, novel, min_points);
+  place_best_free(x, lw, novel);
   // At most k particles are injected; candidates that neither join nor found an object (drawn
   // on a noise speck) take no slot, so up to kCandidates k are drawn.
   constexpr std::size_t kCandidates = 4;
@@ -523,7 +551,7 @@ void ReclusteringSir::inject() {
       joins.push_back(s);
       continue;
     }
-    const int c = found_object(s, novel, min_points);
+    const int c = found_object(s, novel);
     if (c > 0 && !slots.take(s, c, objects_.size(), clusters_, x, lw)) break;
   }
   for (const State& s : joins) {
@@ -544,12 +572,15 @@ void ReclusteringSir::recluster() {
   // person (two objects that split a silhouette sit about one half height apart) and merge into
   // the older (earlier) one; a confirmed label is not renamed by an unconfirmed one (as
   // merge_overlapping of the multi-Bernoulli filter).
-  const float hw = float(0.5 * params_.size.size_aspect * person_h_), hh = float(0.5 * person_h_);
   const float merge2 = float(params_.merge_distance * params_.merge_distance);
   for (std::size_t a = 0; a < m; ++a) {
     if (ended[a]) continue;
     for (std::size_t b = a + 1; b < m; ++b) {
       if (ended[b]) continue;
+      // A person's size between the two.
+      const Eigen::Vector2f half =
+          half_size(0.5f * (objects_[a].estimate[1] + objects_[b].estimate[1]));
+      const float hw = half[0], hh = half[1];
       const float dx = (objects_[a].estimate[0] - objects_[b].estimate[0]) / hw;
       const float dy = (objects_[a].estimate[1] - objects_[b].estimate[1]) / hh;
       bool merge = dx * dx + dy * dy <= merge2;
@@ -577,9 +608,10 @@ void ReclusteringSir::recluster() {
     }
   }
   // Too few measurements for max_misses steps: the object releases its particles and ends.
-  const double min_points = params_.keep_fraction * expected_points();
   for (std::size_t k = 0; k < m; ++k) {
     const bool old = k + 1 < members_.size();  // existed at the association
+    const double min_points =
+        params_.keep_fraction * expected_points(count_scale(objects_[k].estimate[1]));
     objects_[k].misses = old && double(members_[k + 1].size()) < min_points
                              ? objects_[k].misses + 1 : 0;
     if (ended[k] || objects_[k].misses < params_.max_misses) continue;
