@@ -252,3 +252,30 @@ def test_far_views_do_not_shrink_a_vehicle_under_a_gantry(tmp_path):
             assert all(abs(d) < bound for d in errors.values()), errors
         else:  # every view: the car behind the trucks collapses to min_size's length
             assert errors["car3"] < -3.0, errors
+
+
+def test_resolution_cut_keeps_a_low_cameras_best_views():
+    """The low mast (6 m, pitch 12 deg) at a third of its resolution (320x180, focal 300 px), heavy
+    traffic, exact silhouettes: a tall vehicle's far roof corner lands tens of metres down the
+    road, so its length is resolved worse than 2 m per pixel in every view. Regression: the fixed
+    cut max_length_resolution = 2 leaves two articulated lorries no view (not fully in view) and
+    calls an 8.6 m truck light from two views; relaxed to twice each vehicle's best view
+    (length_resolution_factor = 2) every vehicle keeps its best views and is called right."""
+    from vtrack.synthetic_road import CAMERA_SETUPS
+    import dataclasses
+    setup = dataclasses.replace(CAMERA_SETUPS["mast_low"], image_width=320, image_height=180, focal=300.0)
+    scene = make_road_scene(setup, n_vehicles=4, seed=3, class_mix={"articulated": 0.5, "truck": 0.3, "car": 0.2})
+    c = scene.camera_file()
+    cam = vtrack.vehicles.Camera(c["K"], c["dist"], c["R"], c["t"], image_size=tuple(c["image_size"]))
+    views = [(k + 1, v.id, scene.silhouette(v, k)) for k in range(0, scene.n_frames, 2) for v in scene.present(k)]
+    views = [view for view in views if view[2] is not None]
+    truth = {v.id: v for v in scene.vehicles}
+    fixed = run(cam, views, max_length_resolution=2.0)
+    assert sum(not e["valid"] or (e["light_heavy"] == "heavy") != truth[e["vehicle_id"]].heavy for e in fixed) >= 2
+    relaxed = run(cam, views, max_length_resolution=2.0, length_resolution_factor=2.0)
+    everything = {e["vehicle_id"]: e for e in run(cam, views)}
+    for e in relaxed:
+        v = truth[e["vehicle_id"]]
+        assert e["valid"] and (e["light_heavy"] == "heavy") == v.heavy, (v.cls, v.L, e)
+        # Only the views within twice the best: fewer than every view, more than one.
+        assert 1 < e["frames_used"] < everything[e["vehicle_id"]]["frames_used"]
