@@ -351,6 +351,7 @@ TEST(VehicleDimensionEstimator, ResolutionCutIsRelaxedToEachVehiclesBestViews) {
   p.proposal_scale = 0.3;  // two far rays leave L metres wide: longer steps, thinned, to mix
   p.thinning = 10;
   p.max_length_resolution = 0.5 * best;  // no view passes the fixed cut
+  p.length_resolution_factor = 0.0;      // alone
   const std::vector<models::VehicleModel> one{{"only", m, s, 1.0, false}};
   filters::VehicleDimensionEstimator fixed(cam, one, p);
   for (std::size_t k = 0; k < approaching.size(); ++k) fixed.update_polygon(1, static_cast<int>(k) + 1, approaching[k]);

@@ -129,13 +129,15 @@ struct VehicleEstimatorParams {
   double heavy_volume = 45.0;  // m^3, for light_heavy_rule = "volume" (see above)
   VehicleDecision decision = VehicleDecision::Auto;
   double border_margin_px = 1.0;  // a silhouette this close to the image border is cut by it
-  // The resolution cut of "frames used" (metres of road per pixel of the box's length, so the
-  // same distances at any image resolution): a view is used when its resolution is at most
-  // max(max_length_resolution, length_resolution_factor * the vehicle's best). 0 and 0 = every
-  // view; factor 0 = the fixed cut alone; max_length_resolution 0 = relative to the best alone.
-  // Measured in benchmarks/vehicles.py (its docstring holds the tables).
+  // The resolution cut of "frames used": a view is used when its length's resolution (metres of
+  // road per pixel) is at most max(max_length_resolution, length_resolution_factor * the
+  // vehicle's best). 0 and 0 = every view; factor 0 = the fixed cut alone. The default is the
+  // factor alone, 4: a ratio of one vehicle's own views, so the same views at any image
+  // resolution and lens (a fixed 2 m per pixel keeps 3x fewer views at a third of the
+  // resolution, and none of a lorry under a low mast), and on the gantry it drops the far merged
+  // views a fixed 2 m dropped (benchmarks/vehicles.py, tuning seeds: the tables are there).
   double max_length_resolution = 0.0;
-  double length_resolution_factor = 0.0;
+  double length_resolution_factor = 4.0;
   std::uint64_t seed = 0;
 
   static const core::ParameterTable<VehicleEstimatorParams>& table();
