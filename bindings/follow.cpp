@@ -119,9 +119,17 @@ face's thirds), or rows (fx, fy, fw, fh) of fractions of the box; `edges`: pairs
 Other keyword parameters as ColorParticleTracker; default_params().
 )doc";
 
-}  // namespace
+// Each part's `of(p)` after init, for the per-part properties of PartParticleTracker.
+template <class Of>
+auto per_part(const PartParticleFilter& t, const char* name, const Of& of) {
+  ObjectGuard guard(&t);
+  if (!t.initialized()) throw InvalidArgument(std::string(name) + " before init");
+  std::vector<decltype(of(0))> out;
+  for (int p = 0; p < t.part_count(); ++p) out.push_back(of(p));
+  return out;
+}
 
-void bind_follow(py::module_& m) {
+void bind_color_tracker(py::module_& m) {
   py::class_<ColorParticleFilter> color(m, "ColorParticleTracker", kColorDoc);
   color
       .def(py::init([](const py::kwargs& kwargs) {
@@ -148,7 +156,9 @@ void bind_follow(py::module_& m) {
         return "ColorParticleTracker(" + keyword_text(params_dict(t.params())) + ")";
       });
   def_params<ColorParticleParams>(color, [](const ColorParticleFilter& t) { return t.params(); });
+}
 
+void bind_part_tracker(py::module_& m) {
   py::class_<PartParticleFilter> parts(m, "PartParticleTracker", kPartDoc);
   parts
       .def(py::init([](const py::object& edges, py::kwargs kwargs) {
@@ -179,42 +189,27 @@ void bind_follow(py::module_& m) {
         return box_tuple(t.box());
       }, "The whole object's last box (x, y, w, h).")
       .def_property_readonly("parts", [](const PartParticleFilter& t) {
-        ObjectGuard guard(&t);
-        if (!t.initialized()) throw InvalidArgument("parts before init");
-        Eigen::Matrix<double, Eigen::Dynamic, 4, Eigen::RowMajor> out(t.part_count(), 4);
-        for (int p = 0; p < t.part_count(); ++p) {
-          const Box b = t.part_box(p);
-          out.row(p) << b.x, b.y, b.w, b.h;
+        const std::vector<Box> boxes = per_part(t, "parts", [&](int p) { return t.part_box(p); });
+        Eigen::MatrixXd out(boxes.size(), 4);
+        for (std::size_t p = 0; p < boxes.size(); ++p) {
+          out.row(static_cast<Eigen::Index>(p)) << boxes[p].x, boxes[p].y, boxes[p].w, boxes[p].h;
         }
-        return Eigen::MatrixXd(out);
+        return out;
       }, "(P, 4) each part's box x, y, w, h (eq. 22).")
       .def_property_readonly("occluded", [](const PartParticleFilter& t) {
-        ObjectGuard guard(&t);
-        if (!t.initialized()) throw InvalidArgument("occluded before init");
-        std::vector<bool> out;
-        for (int p = 0; p < t.part_count(); ++p) out.push_back(t.occluded(p));
-        return py::array_t<bool>(py::cast(out));
+        return py::array_t<bool>(
+            py::cast(per_part(t, "occluded", [&](int p) { return t.occluded(p); })));
       }, "(P,) bool: the parts judged occluded in the last update.")
       .def_property_readonly("coefficients", [](const PartParticleFilter& t) {
-        ObjectGuard guard(&t);
-        if (!t.initialized()) throw InvalidArgument("coefficients before init");
-        Eigen::VectorXd out(t.part_count());
-        for (int p = 0; p < t.part_count(); ++p) out[p] = t.coefficient(p);
-        return out;
+        const std::vector<double> c =
+            per_part(t, "coefficients", [&](int p) { return t.coefficient(p); });
+        return Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(c.data(), c.size()));
       }, "(P,) each part's largest Bhattacharyya coefficient of the last update.")
       .def_property_readonly("particles", [](const PartParticleFilter& t) {
-        ObjectGuard guard(&t);
-        if (!t.initialized()) throw InvalidArgument("particles before init");
-        py::list out;
-        for (int p = 0; p < t.part_count(); ++p) out.append(py::cast(t.particle_boxes(p)));
-        return out;
+        return per_part(t, "particles", [&](int p) { return t.particle_boxes(p); });
       }, "Per part: the ((1 + degree) N, 4) predicted and message particles' boxes of Step 5.")
       .def_property_readonly("weights", [](const PartParticleFilter& t) {
-        ObjectGuard guard(&t);
-        if (!t.initialized()) throw InvalidArgument("weights before init");
-        py::list out;
-        for (int p = 0; p < t.part_count(); ++p) out.append(py::cast(t.weights(p)));
-        return out;
+        return per_part(t, "weights", [&](int p) { return t.weights(p); });
       }, "Per part: their normalised weights (eqs. 23, 30).")
       .def_property_readonly("edges", [](const PartParticleFilter& t) { return t.layout().edges; })
       .def_property_readonly("initialized", guarded(&PartParticleFilter::initialized))
@@ -222,7 +217,9 @@ void bind_follow(py::module_& m) {
         return "PartParticleTracker(" + keyword_text(params_dict(t.params())) + ")";
       });
   def_params<PartParticleParams>(parts, [](const PartParticleFilter& t) { return t.params(); });
+}
 
+void bind_follow_video(py::module_& m) {
   m.def(
       "follow_video",
       [](const py::handle& video_arg, const py::handle& box_arg, const py::handle& method,
@@ -265,6 +262,14 @@ void bind_follow(py::module_& m) {
       py::arg("video"), py::arg("init_box"), py::arg("method"), py::arg("first"), py::arg("last"),
       py::arg("render"), py::arg("params"), py::arg("progress"),
       "The compiled half of vtrack.follow (use that): the (N, 5) rows frame, x, y, w, h.");
+}
+
+}  // namespace
+
+void bind_follow(py::module_& m) {
+  bind_color_tracker(m);
+  bind_part_tracker(m);
+  bind_follow_video(m);
 }
 
 }  // namespace vtrack::bindings

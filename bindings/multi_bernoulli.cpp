@@ -42,32 +42,9 @@ H x W float32 image y in [0, 1] (near 1 = background) to step(), which returns t
 tracks as vtrack.Tracks (scores = existence probabilities, states = the filter's own box before
 the box calibration).
 )doc");
-  cls.def(py::init([](const py::handle& image_size, const py::kwargs& kwargs) {
-           const auto [w, h] = image_size_from(image_size);
-           return MultiBernoulliFilter(w, h, params_from_kwargs<MultiBernoulliParams>(kwargs, "tracker"));
-         }),
-         py::arg("image_size"))
-      .def(
-          "step",
-          [](MultiBernoulliFilter& f, const py::handle& y) {
-            py::array keep;
-            const cv::Mat img = float32_image(y, "y", keep);
-            ObjectGuard guard(&f);
-            py::gil_scoped_release release;
-            return TrackSet{f.step(img)};
-          },
-          py::arg("y"),
-          "Process one background-subtracted image y (H x W float32 in [0, 1], H and W as "
-          "image_size) and return the reported tracks (vtrack.Tracks).")
-      .def_property_readonly(
-          "tracks",
-          [](const MultiBernoulliFilter& f) {
-            ObjectGuard guard(&f);
-            return TrackSet{f.tracks()};
-          },
-          "The tracks returned by the last step.")
-      // Copies (returned by value): references into the filter would dangle after the next step.
-      .def_property_readonly(
+  def_foreground_tracker<MultiBernoulliFilter, MultiBernoulliParams>(cls);
+  // Copies (returned by value): references into the filter would dangle after the next step.
+  cls.def_property_readonly(
           "components",
           [](const MultiBernoulliFilter& f) {
             ObjectGuard guard(&f);
@@ -92,11 +69,7 @@ the box calibration).
             return d;
           },
           "The people size prior in force, in pixels: mean width and height, the ranges boxes are "
-          "clamped to, and whether it was learnt from the foreground (see height_mean).")
-      .def_property_readonly(
-          "image_size",
-          [](const MultiBernoulliFilter& f) { return py::make_tuple(f.width(), f.height()); });
-  def_params<MultiBernoulliParams>(cls, [](const MultiBernoulliFilter& f) { return f.params(); });
+          "clamped to, and whether it was learnt from the foreground (see height_mean).");
 }
 
 }  // namespace vtrack::bindings

@@ -24,31 +24,8 @@ foreground pixels y < foreground_threshold are the measurements: pass 1 - mask f
 mask) and returns vtrack.Tracks (boxes: the ellipses' bounding boxes after the box calibration,
 scores: the share of the object's measurements inside its ellipse, states: (x, y, vx, vy, a, b)).
 )doc");
-  cls.def(py::init([](const py::handle& image_size, const py::kwargs& kwargs) {
-           const auto [w, h] = image_size_from(image_size);
-           return ReclusteringSir(w, h, params_from_kwargs<ReclusteringSirParams>(kwargs, "tracker"));
-         }),
-         py::arg("image_size"))
-      .def(
-          "step",
-          [](ReclusteringSir& f, const py::handle& y) {
-            py::array keep;
-            const cv::Mat img = float32_image(y, "y", keep);
-            ObjectGuard guard(&f);
-            py::gil_scoped_release release;
-            return TrackSet{f.step(img)};
-          },
-          py::arg("y"),
-          "Process one background-subtracted image y (H x W float32 in [0, 1], H and W as "
-          "image_size) and return the reported tracks (vtrack.Tracks).")
-      .def_property_readonly(
-          "tracks",
-          [](const ReclusteringSir& f) {
-            ObjectGuard guard(&f);
-            return TrackSet{f.tracks()};
-          },
-          "The tracks returned by the last step.")
-      .def_property_readonly(
+  def_foreground_tracker<ReclusteringSir, ReclusteringSirParams>(cls);
+  cls.def_property_readonly(
           "particles",
           [](const ReclusteringSir& f) {
             ObjectGuard guard(&f);
@@ -88,10 +65,7 @@ scores: the share of the object's measurements inside its ellipse, states: (x, y
                              "The person height in force (px): height_mean, or learnt from the "
                              "foreground, or size_initial x the image height before that.")
       .def_property_readonly("grid_pixels", guarded(&ReclusteringSir::grid_pixels),
-                             "The measurement grid's step in force (px).")
-      .def_property_readonly(
-          "image_size", [](const ReclusteringSir& f) { return py::make_tuple(f.width(), f.height()); });
-  def_params<ReclusteringSirParams>(cls, [](const ReclusteringSir& f) { return f.params(); });
+                             "The measurement grid's step in force (px).");
 
   m.def(
       "ellipse_log_likelihood",

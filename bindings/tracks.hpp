@@ -3,6 +3,8 @@
 #include <vector>
 
 #include "common.hpp"
+#include "guard.hpp"
+#include "params.hpp"
 #include "vtrack/apps/mot_files.hpp"
 #include "vtrack/filters/tracks.hpp"
 
@@ -16,5 +18,44 @@ struct TrackSet {
 py::array_t<double> track_rows(const std::vector<apps::TrackRow>& rows);
 // (N, 10) float64 MOTChallenge det rows frame, -1, x, y, w, h, conf, -1, -1, -1.
 py::array_t<double> detection_rows(const std::vector<apps::Detection>& detections);
+
+}  // namespace vtrack::bindings
+
+namespace vtrack::bindings {
+
+// The surface of the trackers fed background-subtracted images (MultiBernoulliTracker,
+// ReclusteringSirTracker): Tracker(image_size, **params), step(y) -> Tracks, tracks, image_size,
+// default_params() / params. Tracker has Tracker(width, height, Params), step(cv::Mat),
+// tracks(), width(), height() and params().
+template <class Tracker, class Params>
+void def_foreground_tracker(py::class_<Tracker>& cls) {
+  cls.def(py::init([](const py::handle& image_size, const py::kwargs& kwargs) {
+           const auto [w, h] = image_size_from(image_size);
+           return Tracker(w, h, params_from_kwargs<Params>(kwargs, "tracker"));
+         }),
+         py::arg("image_size"))
+      .def(
+          "step",
+          [](Tracker& f, const py::handle& y) {
+            py::array keep;
+            const cv::Mat img = float32_image(y, "y", keep);
+            ObjectGuard guard(&f);
+            py::gil_scoped_release release;
+            return TrackSet{f.step(img)};
+          },
+          py::arg("y"),
+          "Process one background-subtracted image y (H x W float32 in [0, 1], H and W as "
+          "image_size) and return the reported tracks (vtrack.Tracks).")
+      .def_property_readonly(
+          "tracks",
+          [](const Tracker& f) {
+            ObjectGuard guard(&f);
+            return TrackSet{f.tracks()};
+          },
+          "The tracks returned by the last step.")
+      .def_property_readonly(
+          "image_size", [](const Tracker& f) { return py::make_tuple(f.width(), f.height()); });
+  def_params<Params>(cls, [](const Tracker& f) { return f.params(); });
+}
 
 }  // namespace vtrack::bindings

@@ -56,6 +56,27 @@ def write_video(tmp_path):
     return write
 
 
+@pytest.fixture(scope="session")
+def crossing_scenes(tmp_path_factory):
+    """{seed: (scene, path)}: two seeded 320 x 240 scenes of 3 people crossing (vtrack.synthetic),
+    150 frames, written as MJPG videos. Illumination drifts by 2 % (the KDE's stack spans 100
+    frames). The foreground trackers' end-to-end tests run on them."""
+    cv2 = pytest.importorskip("cv2")
+    from vtrack.synthetic import make_scene  # noqa: PLC0415
+
+    out = {}
+    for seed in (3, 4):
+        scene = make_scene(320, 240, n_frames=150, n_people=3, seed=seed,
+                           illumination_amplitude=0.02)
+        path = tmp_path_factory.mktemp(f"scene{seed}") / "scene.avi"
+        writer = cv2.VideoWriter(str(path), cv2.VideoWriter_fourcc(*"MJPG"), 10.0, (320, 240))
+        for k in range(len(scene)):
+            writer.write(scene.frame(k))
+        writer.release()
+        out[seed] = (scene, path)
+    return out
+
+
 def random_frames(count, height=48, width=64, seed=0):
     rng = np.random.default_rng(seed)
     return [rng.integers(0, 256, (height, width, 3), dtype=np.uint8) for _ in range(count)]

@@ -156,6 +156,22 @@ def test_batch_equals_sequential_cli_and_reports_bad_inputs(data, references, cl
     assert _leftovers(out) == []
 
 
+def test_batch_runs_every_method_as_vtrack_track_does(data, vtrack_cli, client, tmp_path):
+    """--method sir through the batch gives `vtrack track --method sir`'s tracks byte for byte
+    (the mb method is compared above; glmb needs a detector and is in the usage test)."""
+    root, _ = data
+    video = root / "clips" / "s1.avi"
+    reference = tmp_path / "reference.txt"
+    result = vtrack_cli("track", video, "--method", "sir", "--out", reference, "--seed", SEED)
+    assert result.returncode == 0, result.stderr
+    runs = batch.track_many([video], tmp_path / "out", client=client, method="sir", seed=SEED)
+    assert [r["status"] for r in runs] == ["ok"], runs
+    tracks = (tmp_path / "out" / "s1" / "tracks.txt").read_bytes()
+    assert tracks == reference.read_bytes() and tracks  # and the tracker reported something
+    run = json.loads((tmp_path / "out" / "s1" / "run.json").read_text())
+    assert run["parameters"]["method"] == "sir"
+
+
 def test_rerun_skips_complete_redoes_failed_and_changed(data, references, client, tmp_path):
     root, _ = data
     clips = tmp_path / "clips"

@@ -7,7 +7,6 @@ import pytest
 
 import vtrack
 from vtrack.evaluate import evaluate
-from vtrack.synthetic import make_scene
 
 # The scenes' ground truth is the blobs' exact extent: report the ellipses' boxes unscaled.
 FOREGROUND_BOX = dict(box_scale_w=1.0, box_scale_h=1.0, box_offset_x=0.0, box_offset_y=0.0)
@@ -109,26 +108,9 @@ def test_parameters_by_name():
     assert vtrack.pipelines.pipeline_params("sir")["tracker"]["rho"] == defaults["rho"]
 
 
-@pytest.fixture(scope="module")
-def scenes(tmp_path_factory):
-    """Two seeded 320 x 240 scenes of 3 people crossing, as MJPG videos (as test_track_video)."""
-    cv2 = pytest.importorskip("cv2")
-    out = {}
-    for seed in (3, 4):
-        scene = make_scene(320, 240, n_frames=150, n_people=3, seed=seed,
-                           illumination_amplitude=0.02)
-        path = tmp_path_factory.mktemp(f"scene{seed}") / "scene.avi"
-        writer = cv2.VideoWriter(str(path), cv2.VideoWriter_fourcc(*"MJPG"), 10.0, (320, 240))
-        for k in range(len(scene)):
-            writer.write(scene.frame(k))
-        writer.release()
-        out[seed] = (scene, path)
-    return out
-
-
 @pytest.mark.parametrize("seed", [3, 4])
-def test_tracks_synthetic_people_end_to_end(scenes, seed):
-    scene, path = scenes[seed]
+def test_tracks_synthetic_people_end_to_end(crossing_scenes, seed):
+    scene, path = crossing_scenes[seed]
     rows = vtrack.track_video(path, method="sir", seed=0, **FOREGROUND_BOX)
     metrics = evaluate(scene.gt_rows(), rows)
     # Measured (tracker seeds 0 / 1 / 2): scene 3 MOTA 0.905 / 0.942 / 0.949, IDF1 0.951 /
@@ -143,8 +125,8 @@ def test_tracks_synthetic_people_end_to_end(scenes, seed):
     assert np.sum(rows[:, 0] == last + 1) == scene.count(last)
 
 
-def test_same_seed_same_tracks(scenes):
-    _, path = scenes[3]
+def test_same_seed_same_tracks(crossing_scenes):
+    _, path = crossing_scenes[3]
     a = vtrack.track_video(path, method="sir", seed=5)
     b = vtrack.track_video(path, method="sir", config={"tracker": {"seed": 5}})
     np.testing.assert_array_equal(a, b)

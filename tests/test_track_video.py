@@ -19,27 +19,9 @@ from vtrack.synthetic import make_scene
 FOREGROUND_BOX = dict(box_scale_w=1.0, box_scale_h=1.0, box_offset_x=0.0, box_offset_y=0.0)
 
 
-@pytest.fixture(scope="module")
-def scenes(tmp_path_factory):
-    """Two seeded scenes of 3 people crossing, written as MJPG videos. Illumination drifts by 2 %
-    (the KDE's stack spans 100 frames; see the note on illumination in the issue)."""
-    cv2 = pytest.importorskip("cv2")
-    out = {}
-    for seed in (3, 4):
-        scene = make_scene(320, 240, n_frames=150, n_people=3, seed=seed,
-                           illumination_amplitude=0.02)
-        path = tmp_path_factory.mktemp(f"scene{seed}") / "scene.avi"
-        writer = cv2.VideoWriter(str(path), cv2.VideoWriter_fourcc(*"MJPG"), 10.0, (320, 240))
-        for k in range(len(scene)):
-            writer.write(scene.frame(k))
-        writer.release()
-        out[seed] = (scene, path)
-    return out
-
-
 @pytest.mark.parametrize("seed", [3, 4])
-def test_tracks_synthetic_people_end_to_end(scenes, seed):
-    scene, path = scenes[seed]
+def test_tracks_synthetic_people_end_to_end(crossing_scenes, seed):
+    scene, path = crossing_scenes[seed]
     rows = vtrack.track_video(path, seed=0, **FOREGROUND_BOX)
     assert rows.shape[1] == 10 and rows[:, 0].min() >= 1
     metrics = evaluate(scene.gt_rows(), rows)
@@ -73,8 +55,8 @@ def test_illumination_compensation_handles_a_faster_light_change(tmp_path):
     assert compensated["FP"] < plain["FP"], (plain, compensated)
 
 
-def test_same_seed_same_tracks_and_parameters_are_checked(scenes):
-    _, path = scenes[3]
+def test_same_seed_same_tracks_and_parameters_are_checked(crossing_scenes):
+    _, path = crossing_scenes[3]
     a = vtrack.track_video(path, seed=5, **FOREGROUND_BOX)
     b = vtrack.track_video(path, config={"background": {"threads": 1}}, seed=5, **FOREGROUND_BOX)
     np.testing.assert_array_equal(a, b)
@@ -94,8 +76,8 @@ def test_same_seed_same_tracks_and_parameters_are_checked(scenes):
         vtrack.track_video(path.parent / "missing.avi")
 
 
-def test_cli_track_writes_tracks_and_render(vtrack_cli, scenes, tmp_path):
-    scene, path = scenes[4]
+def test_cli_track_writes_tracks_and_render(vtrack_cli, crossing_scenes, tmp_path):
+    scene, path = crossing_scenes[4]
     config = tmp_path / "params.yml"
     config.write_text("seed: 2\ntracker:\n" +
                       "".join(f"  {k}: {v}\n" for k, v in FOREGROUND_BOX.items()))
@@ -116,10 +98,10 @@ def test_cli_track_writes_tracks_and_render(vtrack_cli, scenes, tmp_path):
     assert out2.read_text() == out.read_text()
 
 
-def test_cli_track_errors_leave_nothing_behind(vtrack_cli, scenes, write_video, tmp_path):
+def test_cli_track_errors_leave_nothing_behind(vtrack_cli, crossing_scenes, write_video, tmp_path):
     from conftest import random_frames
 
-    _, path = scenes[3]
+    _, path = crossing_scenes[3]
     out, render = tmp_path / "t.txt", tmp_path / "r.avi"
     truncated = write_video(random_frames(40), name="truncated.avi")
     truncated.write_bytes(truncated.read_bytes()[: truncated.stat().st_size // 2])
@@ -144,10 +126,10 @@ def test_cli_track_errors_leave_nothing_behind(vtrack_cli, scenes, write_video, 
         assert sorted(p.name for p in tmp_path.iterdir()) == ["bad.yml", "truncated.avi"], args
 
 
-def test_contact_sheet_tiles_frames_with_boxes(scenes, tmp_path):
+def test_contact_sheet_tiles_frames_with_boxes(crossing_scenes, tmp_path):
     from vtrack.contact_sheet import _colour, contact_sheet, main
 
-    scene, path = scenes[3]
+    scene, path = crossing_scenes[3]
     tracks = np.array([[100, 7, 40, 50, 30, 60, 1, -1, -1, -1]], float)
     sheet = contact_sheet(path, tracks, frames=[1, 50, 100, 120], gt=scene.gt_rows(), columns=2,
                           scale=0.5)

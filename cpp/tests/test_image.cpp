@@ -1,10 +1,14 @@
 #include <gtest/gtest.h>
 
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <vector>
 
 #include "vtrack/core/errors.hpp"
 #include "vtrack/core/random.hpp"
 #include "vtrack/image/color.hpp"
+#include "vtrack/image/components.hpp"
 #include "vtrack/image/integral_image.hpp"
 
 using namespace vtrack::image;
@@ -93,4 +97,45 @@ TEST(Rgi, RejectsBadFrames) {
   EXPECT_THROW(bgr_to_rgi(cv::Mat(), out), vtrack::InvalidArgument);
   EXPECT_THROW(bgr_to_rgi(cv::Mat(4, 4, CV_8UC1), out), vtrack::InvalidArgument);
   EXPECT_THROW(bgr_to_rgi(cv::Mat(4, 4, CV_32FC3), out), vtrack::InvalidArgument);
+}
+
+// image::connected_components against cv::connectedComponentsWithStats on masks of blobs, noise
+// and edge cases: the same labels and, for every component, the same box and area.
+TEST(ConnectedComponents, MatchOpenCvStats) {
+  cv::RNG rng(7);
+  std::vector<cv::Mat> masks;
+  for (int k = 0; k < 20; ++k) {
+    cv::Mat m = cv::Mat::zeros(rng.uniform(1, 90), rng.uniform(1, 120), CV_8U);
+    if (k % 2 == 0) {
+      rng.fill(m, cv::RNG::UNIFORM, 0, 256);
+      m = m > rng.uniform(100, 250);  // speckle: many small components touching the borders
+    } else {
+      for (int e = 0; e < 6; ++e) {
+        cv::ellipse(m, {rng.uniform(0, m.cols), rng.uniform(0, m.rows)},
+                    {rng.uniform(1, 20), rng.uniform(1, 30)}, rng.uniform(0, 180), 0, 360, 255,
+                    -1);
+      }
+    }
+    masks.push_back(m);
+  }
+  masks.push_back(cv::Mat::zeros(5, 7, CV_8U));       // no component
+  masks.push_back(cv::Mat(5, 7, CV_8U, cv::Scalar(1)));  // one component, the whole image
+  for (const cv::Mat& mask : masks) {
+    cv::Mat labels, stats, ref_labels, ref_stats, centroids;
+    const int n = connected_components(mask, labels, stats);
+    const int ref_n =
+        cv::connectedComponentsWithStats(mask, ref_labels, ref_stats, centroids, 8, CV_32S);
+    ASSERT_EQ(n, ref_n);
+    ASSERT_EQ(cv::countNonZero(labels != ref_labels), 0);
+    ASSERT_EQ(stats.rows, n);
+    for (int i = 1; i < n; ++i) {
+      for (int s = 0; s < cv::CC_STAT_MAX; ++s) {
+        ASSERT_EQ(stats.at<int>(i, s), ref_stats.at<int>(i, s)) << "component " << i << " stat " << s;
+      }
+    }
+  }
+  cv::Mat labels, stats;
+  EXPECT_THROW(connected_components(cv::Mat(), labels, stats), vtrack::InvalidArgument);
+  EXPECT_THROW(connected_components(cv::Mat::zeros(3, 3, CV_32F), labels, stats),
+               vtrack::InvalidArgument);
 }

@@ -8,6 +8,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "vtrack/core/errors.hpp"
+#include "vtrack/image/components.hpp"
 
 namespace vtrack::models {
 
@@ -83,7 +84,7 @@ void ForegroundSizeEstimator::observe(const cv::Mat& y, float threshold) {
     throw InvalidArgument("y must be a non-empty single-channel float32 image");
   }
   cv::compare(y, threshold, mask_, cv::CMP_LT);
-  const int n = cv::connectedComponentsWithStats(mask_, labels_, stats_, centroids_, 8, CV_32S);
+  const int n = image::connected_components(mask_, labels_, stats_);
   if (decay_ < 1.0) {
     for (double& a : area_by_height_) a *= decay_;
     for (double& c : count_) c *= decay_;
