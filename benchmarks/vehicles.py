@@ -104,7 +104,7 @@ not fully in view; a truck called light): a hard cut can leave a long vehicle se
 no view at all. Next (to develop on tuning seeds of mast_low): keep a vehicle's best-resolved
 views when none passes. Tuning seed 100 re-run with it: gantry 100 % / 5 of 5, mast_high 100 % /
 5 of 5, side 100 % / 3 of 5 (a truck and a bus called light, a van not in view; every view, last
-session: at or near 100 %), so max_length_resolution is off by default (0: every view, the behaviour before). Still below the bar: light accuracy 89.7-96.9 % on mast_low, side, wide,
+session: at or near 100 %), so max_length_resolution was left off by default (0: every view; superseded by the per-vehicle factor below, and the side figure corrected there). Still below the bar: light accuracy 89.7-96.9 % on mast_low, side, wide,
 mast_high (cars called heavy), found 92-95 % on mast_low and wide_distorted.
 Estimator cost (exact silhouettes, every 2nd frame, update() from Python, CPU time, median of 5):
 gantry seed 300 23.7 us per vehicle-frame (every view: 47.4 us, same run), mast_high seed 100
