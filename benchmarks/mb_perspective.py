@@ -7,9 +7,92 @@ all frames, each setting's mean over the seeds.
 
     python benchmarks/mb_perspective.py --calibrate --setting "min07:size_by_row=true,size_min=0.7"
 
+    python benchmarks/mb_perspective.py --variants 768x576 --cost 5
+
 (each --setting is a row of MultiBernoulliTracker parameters, NAME:key=value,...; without one the
-rows are the defaults and size_by_row. --calibrate refits the box calibration on frames 1-397 of
-every run but the defaults'.)
+rows are the defaults and "row" (delta_b_reference row, size_by_row, delta_b 3e-3). --calibrate
+refits the box calibration on frames 1-397 of every run but the defaults'. --cost R prints the MB
+step's CPU time per frame instead, median of R interleaved rounds. Variants: pets09.py's, and the
+development variants 0.6x and 0.4x of the small-scale work, so that 0.5x stays held out. Each
+variant's y, as the mb pipeline feeds its tracker, is computed once into the cache
+(~/.cache/vtrack/mb-perspective, 0.2-3.2 GB a variant) and replayed by every run: the same tracks
+as running the pipeline, at half the cost.)
+
+SMALL SCALES (2026-11-24, second session): the collapse at 0.5x and its fix.
+
+Diagnosis on the development variants (seed 0, "row" 3e-3 with the 768 x 576 calibration kept):
+MOTA on all frames 0.333 at 0.6x and 0.444 at 0.4x against 0.490 and 0.570 for the defaults;
+first-half false positives 1050 (0.6x) and 719 (0.4x) against 392 and 360. Sorting the FPs (no
+GT box within IoU 0.5) by their foot row: at 0.6x 453 of them, on 27 tracks, stand in the top
+fifth of the image, where no one walks (walls, windows, tree tops), at 0.5 of the height the
+annotations' line gives there; at 768 x 576 only 60. Cause: the person height line. Printed by
+ForegroundSizeEstimator.person_height_line on the same y: at 0.6x, slope 0.31 and intercept -2
+(far people at 9-21 px where the annotations have 19-27), at 0.4x 0.33 and -4, at 768 x 576 0.28
+and +4, against the annotations' 0.228 at every scale. Row bands above the people held blobby
+specks that pass the area floor (as wide as they are tall: the floor is an area), their medians
+of 8-10 px pulled the Theil-Sen line down at the top, and "rows where people were seen" then
+reached the top of the image, so the floor of a(row) at the smallest people was no floor: far
+rows got a small size range (boxes down to the specks' size) and large reward weights. The fix
+(models/person_size.cpp): a band whose median is under a third of the person height is left
+out. Lines after it (frame 397 / 794): 768 x 576 0.241 / 0.249 (+17 / +14), 0.6x 0.242 / 0.249
+(+11 / +10), 0.4x 0.256 / 0.247 (+6 / +6), within 6-9 % of the annotations' at the rows where
+people walk. The defaults do not fit a line (size_by_row off): their figures are unchanged.
+
+"row" (delta_b 3e-3, size_by_row) after the fix against the defaults, means over seeds 0-2, MOTA /
+IDF1 / HOTA. 768 x 576 with the calibration refitted on 1-397 (--calibrate; fits 1.656-1.675 x
+1.691-1.750, offsets 0.016-0.025, 0.039-0.057; medians 1.658, 1.712, 0.020, 0.040); the other
+variants with those medians kept:
+
+| variant | setting | 1-397 | 398-795 | all |
+|---|---|---|---|---|
+| 768x576 | default | 0.535 / 0.530 / 0.390 | 0.516 / 0.430 / 0.361 | 0.525 / 0.455 / 0.364 |
+| 768x576 | row | 0.560 / 0.602 / 0.429 | 0.632 / 0.523 / 0.396 | 0.597 / 0.554 / 0.405 |
+| 0.6x (dev) | default | 0.576 / 0.485 / 0.364 | 0.493 / 0.426 / 0.356 | 0.534 / 0.440 / 0.352 |
+| 0.6x (dev) | row | 0.570 / 0.659 / 0.447 | 0.649 / 0.507 / 0.395 | 0.610 / 0.573 / 0.414 |
+| 0.4x (dev) | default | 0.566 / 0.498 / 0.371 | 0.499 / 0.431 / 0.358 | 0.532 / 0.441 / 0.354 |
+| 0.4x (dev) | row | 0.545 / 0.672 / 0.455 | 0.658 / 0.539 / 0.412 | 0.602 / 0.602 / 0.431 |
+
+(768 x 576 before the fix: row 0.456 / 0.604 / 0.411, 0.543 / 0.550 / 0.410, 0.500 / 0.558 /
+0.400; the first half's FPs fell from 639 to 449, seed 0.) So on every variant "row" is better on
+all frames on MOTA, IDF1 and HOTA, and the first half's MOTA is level (+0.025 at 768 x 576,
+-0.006 and -0.021 at 0.6x / 0.4x). Held out, run once (the same calibration kept):
+
+| variant | setting | 1-397 | 398-795 | all |
+|---|---|---|---|---|
+| 0.5x | default | 0.580 / 0.531 / 0.391 | 0.455 / 0.420 / 0.351 | 0.517 / 0.458 / 0.365 |
+| 0.5x | row | 0.572 / 0.677 / 0.460 | 0.626 / 0.518 / 0.397 | 0.599 / 0.576 / 0.419 |
+| 1.5x | default | 0.619 / 0.525 / 0.401 | 0.415 / 0.408 / 0.334 | 0.516 / 0.444 / 0.358 |
+| 1.5x | row | 0.505 / 0.660 / 0.445 | 0.645 / 0.562 / 0.421 | 0.576 / 0.594 / 0.425 |
+
+(At 1.5x the first half's MOTA is 0.114 lower, FPs 565 against 339, seed 0: the far people
+again; all frames are better on every figure.) And on tests/test_track_video.py's synthetic
+scenes (seeds 3 / 4, tracker seed 0, identity box calibration), MOTA / IDF1: default 0.935 /
+0.966 and 0.941 / 0.969; row 3e-3 0.760 / 0.875 and 0.897 / 0.947 (row 2e-3, looked at after the fact and not chosen: 0.905 / 0.951 and 0.941 /
+0.969). Two causes, both outside PETS09: scene 4 fits no line (3 people, no perspective), so
+"row" is eq. (20) as printed with delta_b 3e-3, whose weaker reward boxes the KDE's blobs tighter
+than their exact extent (the identity calibration); scene 3's 3 people (36 px at foot row 47,
+59 at 137, 51 at 231) fit a spurious line (slope 0.09 by frame 149): three people at three rows
+are a line to the fit, which counts components (frames x people), not people. So "row" is not
+worse held out on PETS09 (0.5x was the collapse), but it is on the synthetic scenes, and by the
+issue's rule it stays off. What is left: a line that needs several people per band before it
+is believed (the fit cannot tell 3 people of random heights from 3 in perspective), and a
+delta_b for "row" that does not trade the synthetic scenes' clean blobs for PETS09's far people.
+
+Cost (--variants 768x576 --cost 5: MultiBernoulliTracker.step's CPU time per frame over all
+795 cached frames, seed 0, median of 5 interleaved rounds, the machine shared and loaded):
+
+| setting | ms / step | ratio to default |
+|---|---|---|
+| default | 5.75 | 1.00 |
+| row3e-3 | 9.14 | 1.59 |
+
+(The first session measured 10.9 against 4.8 ms in another run.) Profiled with perf (row, 300
+frames): the closing and both integral images of set_image, the box sums (IntegralImage::sum and
+clip, box_to_rect) and, for the line, the row bands' medians each frame. The likelihood took the
+explained regions twice per box (once for the sum of y, once for the reward): one pass now, the
+same sums in the same order (seed 0's tracks unchanged). The rest of the difference is the
+reward image and its integral (one pass each per frame), the finer birth grid of the far rows
+and the line fit, not cut in this session.
 
 Results (2026-11-24, 768 x 576, seeds 0, 1, 2; frames 1-397 are the tuning split, 398-795 the
 half the size problem was diagnosed on, so neither is held out):
@@ -97,25 +180,91 @@ Held out (once, seed 0, the 768 x 576 calibration kept: the median of the three 
 
 At 1.5x it is better on every figure of all frames; at 0.5x its MOTA collapses (0.252 against
 0.590; not diagnosed yet -- the far people there are 15-30 px tall, where the weights a / a(row)
-are largest and the closing, which keeps the one h, is 3 x 3). What is left: that 0.5x failure,
-and a ground truth that counts the far people the filter now finds before MOTA can judge it.
+are largest and the closing, which keeps the one h, is 3 x 3). What is left: that 0.5x failure
+(diagnosed and fixed: SMALL SCALES at the top), and a ground truth that counts the far people the
+filter now finds before MOTA can judge it.
 """
 from __future__ import annotations
 
 import argparse
 import os
 import sys
+import time
+from typing import List, Optional
 
+import cv2
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(__file__))
-from _foreground import (VARIANTS, apply_calibration, default_gt, default_video,  # noqa: E402
-                         fit_calibration, load_gt, select, transform_gt, variant_video)
+from _foreground import (CACHE, VARIANTS, Variant, apply_calibration,  # noqa: E402
+                         default_gt, default_video, fit_calibration, load_gt, select,
+                         transform_gt, variant_video)
 from _table import print_table  # noqa: E402
-from mb_groups import parse_value, run_mb  # noqa: E402
+from mb_groups import parse_value  # noqa: E402
+import vtrack  # noqa: E402
 from vtrack.evaluate import evaluate  # noqa: E402
 
 SPLITS = (("1-397", 1, 397), ("398-795", 398, 795), ("all", 1, 795))
+
+# Development variants of the small-scale work (issue 12): the "row" reward was diagnosed and
+# tuned on these, so that 0.5x stays held out.
+DEV_VARIANTS = {"0.6x": Variant("0.6x", 0.6, description="resized to 461 x 346 (development)"),
+                "0.4x": Variant("0.4x", 0.4, description="resized to 307 x 230 (development)")}
+
+
+def pipeline_foreground(video: str, name: str):
+    """The y the mb pipeline gives its tracker on every frame, and the tracker's closing after
+    each, cached as .npy files: the KDE's selective update reads y closed with the tracker's
+    closing, which depends only on the learnt person height (the same for every setting of the
+    likelihood and of size_by_row), so every run replays these frames; run_mb_cached checks that
+    its tracker's closing follows the recorded one."""
+    base = CACHE / "mb-perspective"
+    y_path, c_path = base / f"{name}-y.npy", base / f"{name}-closing.npy"
+    if not (y_path.exists() and c_path.exists()):
+        base.mkdir(parents=True, exist_ok=True)
+        cap = cv2.VideoCapture(video)
+        ok, frame = cap.read()
+        background = vtrack.KdeBackground(threads=1)
+        tracker = vtrack.MultiBernoulliTracker((frame.shape[1], frame.shape[0]))
+        frames, closings = [], []
+        while ok:
+            frames.append(background.apply(frame).copy())
+            tracker.step(frames[-1])
+            closings.append(tracker.closing_pixels)
+            background.set_closing(tracker.closing_pixels)
+            ok, frame = cap.read()
+        cap.release()
+        np.save(c_path, np.array(closings))
+        tmp = base / f"{name}-y.tmp.npy"
+        np.save(tmp, np.stack(frames))
+        tmp.rename(y_path)
+    return np.load(y_path, mmap_mode="r"), np.load(c_path)
+
+
+def run_mb_cached(cached, params, last: Optional[int] = None) -> List[dict]:
+    """mb_groups.run_mb on pipeline_foreground's frames (the same tracks)."""
+    y, closings = cached
+    tracker = vtrack.MultiBernoulliTracker((y.shape[2], y.shape[1]), **params)
+    out = []
+    for k, frame in enumerate(y[:last]):
+        tracks = tracker.step(np.ascontiguousarray(frame))
+        if tracker.closing_pixels != closings[k]:
+            raise RuntimeError(f"frame {k}: closing {tracker.closing_pixels} against the cached "
+                               f"{closings[k]}; run this setting through mb_groups.run_mb")
+        out.append(dict(ids=np.asarray(tracks.ids), boxes=np.asarray(tracks.boxes).reshape(-1, 4)))
+    return out
+
+
+def step_cost(cached, params) -> float:
+    """CPU time (time.process_time: the cores are shared) of MultiBernoulliTracker.step per
+    frame over the cached frames, in ms."""
+    y = cached[0]
+    tracker = vtrack.MultiBernoulliTracker((y.shape[2], y.shape[1]), **params)
+    frames = [np.ascontiguousarray(f) for f in y]
+    start = time.process_time()
+    for frame in frames:
+        tracker.step(frame)
+    return (time.process_time() - start) / len(frames) * 1e3
 
 
 def mot_rows(run) -> np.ndarray:
@@ -134,7 +283,7 @@ def parse_setting(text: str):
     return name, params
 
 
-DEFAULT_SETTINGS = ("default", "size_by_row:size_by_row=true")
+DEFAULT_SETTINGS = ("default", "row3e-3:delta_b_reference=row,size_by_row=true,delta_b=0.003")
 
 
 def main() -> None:
@@ -147,6 +296,9 @@ def main() -> None:
     parser.add_argument("--calibrate", action="store_true",
                         help="refit the box calibration on frames 1-397 of each run but the "
                              "defaults'")
+    parser.add_argument("--cost", type=int, default=0, metavar="ROUNDS",
+                        help="instead of the scores: the MB step's CPU time per frame of each "
+                             "setting, median of ROUNDS rounds over all frames, interleaved")
     args = parser.parse_args()
     video, gt_path = default_video(), default_gt()
     if not (os.path.exists(video) and os.path.exists(gt_path)):
@@ -155,9 +307,22 @@ def main() -> None:
     seeds = [int(s) for s in args.seeds.split(",")]
     settings = [parse_setting(t) for t in (args.setting or DEFAULT_SETTINGS)]
     for name in args.variants.split(","):
-        v = VARIANTS[name]
+        v = {**VARIANTS, **DEV_VARIANTS}[name]
         gt = transform_gt(load_gt(gt_path), v)
-        path = variant_video(video, v)
+        cached = pipeline_foreground(variant_video(video, v), name)
+        if args.cost:
+            # Interleaved (one round of each setting in turn), so a change in the machine's load
+            # falls on every setting alike.
+            costs = {label: [] for label, _ in settings}
+            for _ in range(args.cost):
+                for label, extra in settings:
+                    costs[label].append(step_cost(cached, dict(seed=seeds[0], **extra)))
+            base = np.median(costs[settings[0][0]])
+            print(f"\nPETS09-S2L1 {name}, MB step CPU ms per frame, median of {args.cost} rounds\n")
+            print_table(["setting", "ms / step", f"ratio to {settings[0][0]}"],
+                        [[label, f"{np.median(c):.2f}", f"{np.median(c) / base:.2f}"]
+                         for label, c in costs.items()])
+            continue
         table = []
         for label, extra in settings:
             calibrate = args.calibrate and bool(extra)
@@ -167,7 +332,7 @@ def main() -> None:
                 if calibrate:
                     params.update(box_scale_w=1.0, box_scale_h=1.0, box_offset_x=0.0,
                                   box_offset_y=0.0)
-                rows = mot_rows(run_mb(path, params))
+                rows = mot_rows(run_mb_cached(cached, params))
                 if calibrate:
                     cal = fit_calibration(select(rows, 1, 397), gt)
                     print(f"{label} seed {seed} calibration (1-397):",
@@ -175,8 +340,8 @@ def main() -> None:
                     rows = apply_calibration(rows, cal)
                 m = [evaluate(select(gt, a, b), select(rows, a, b)) for _, a, b in SPLITS]
                 scores.append([(s["MOTA"], s["IDF1"], s["HOTA"]) for s in m])
-                cells = [f"{sp[0]} {x[0]:.3f}/{x[1]:.3f}/{x[2]:.3f}"
-                         for sp, x in zip(SPLITS, scores[-1])]
+                cells = [f"{sp[0]} {x[0]:.3f}/{x[1]:.3f}/{x[2]:.3f} (FP {s['FP']}, FN "
+                         f"{s['FN']})" for sp, x, s in zip(SPLITS, scores[-1], m)]
                 print(f"{name} {label} seed {seed}: " + ", ".join(cells), flush=True)
             mean = np.mean(np.array(scores), axis=0)
             table.append([label] + ["%.3f / %.3f / %.3f" % tuple(x) for x in mean])

@@ -215,6 +215,21 @@ counted, as a fraction of the image; aspect: a person's width / height.
           "Count the foreground components of y (H x W float32, near 1 = background).")
       .def_property_readonly("person_height", guarded(&ForegroundSizeEstimator::person_height),
                              "The learnt person height (px); 0 before any component.")
+      .def_property_readonly(
+          "person_height_line",
+          [](const ForegroundSizeEstimator& e) {
+            const models::PersonHeightLine line = e.person_height_line();
+            py::dict d;
+            d["slope"] = line.slope;
+            d["intercept"] = line.intercept;
+            d["min_height"] = line.min_height;
+            d["max_height"] = line.max_height;
+            d["by_row"] = line.by_row;
+            return d;
+          },
+          "The person height by foot row, h = slope x row + intercept (px) clamped to "
+          "[min_height, max_height], and whether the data support a slope (by_row; else the "
+          "constant intercept = person_height).")
       .def_property_readonly("weight", guarded(&ForegroundSizeEstimator::weight),
                              "The (decayed) total area of the components counted (px).")
       .def_property_readonly("frames", guarded(&ForegroundSizeEstimator::frames),

@@ -122,3 +122,37 @@ def test_bad_arguments_are_named():
         est.observe(np.ones((10, 10), np.float32), threshold=float("nan"))
     est.observe(np.ones((10, 10), np.float32))   # no foreground: nothing learnt
     assert est.person_height == 0.0 and est.weight == 0.0
+
+
+@pytest.mark.parametrize("scale", [1.0, 0.6, 0.4])
+def test_person_height_line_holds_at_every_scale(scale):
+    # A ground plane in perspective, h = 0.25 foot - 10 px at 640 x 480 (30 px at foot row 160,
+    # 107 at 470), resized by `scale`, twelve people a frame; above them, specks of a fixed
+    # 6 x 6 px (walls, windows and tree tops of PETS09): below the area floor of a person at
+    # 640 x 480, above it at 0.4x, and as many per row band as there are people. The line is
+    # that of the people at every scale: slope 0.25 (a ratio of pixels, so the same at every
+    # scale) within 6 % and heights within 8 % where people stand.
+    width, height = int(640 * scale), int(480 * scale)
+    est = ForegroundSizeEstimator()
+    feet = np.arange(160, 471, 3) * scale
+    for start in range(0, len(feet), 12):
+        y = np.ones((height, width), np.float32)
+        for i, foot in enumerate(feet[start:start + 12]):
+            h = int(round(0.25 * foot - 10 * scale))
+            w = max(2, int(round(0.35 * h)))
+            x0 = int((10 + 52 * i) * scale)
+            y[int(foot) - h + 1:int(foot) + 1, x0:x0 + w] = 0.1
+        est.observe(y)
+    for frame in range(3):
+        y = np.ones((height, width), np.float32)
+        for i in range(10):
+            row = int((5 + (i % 2) * 30) * scale) + 1
+            y[row:row + 6, 4 + 24 * i:10 + 24 * i] = 0.2
+        est.observe(y)
+    line = est.person_height_line
+    assert line["by_row"], line
+    assert line["slope"] == pytest.approx(0.25, rel=0.06), line
+    for foot in (170, 300, 460):
+        at = np.clip(line["slope"] * foot * scale + line["intercept"], line["min_height"],
+                     line["max_height"])
+        assert at == pytest.approx((0.25 * foot - 10) * scale, rel=0.08), (foot, line)

@@ -243,6 +243,41 @@ TEST(GlmbEstimator, ConsistentEstimatorIsHysteresisOnTheExistence) {
   EXPECT_EQ(run.labels[24], -1);
 }
 
+TEST(GlmbEstimator, DuplicateGateReportsOneLabelPerTarget) {
+  // Two birth components at each of two places, existence 0.9, p_D 0.5, one detection at each
+  // place. Per place, the hypothesis with both labels (one takes the detection, the other is
+  // missed) has weight 0.9 * 0.9 (1 - p_D) = 0.405 against 0.9 * 0.1 = 0.09 with one of them
+  // absent, so the best hypothesis holds two labels on each target, at the same mean. With the
+  // gate (chi-square 0.99 quantile for 2-D detections) one label per target is reported: the
+  // older (lower birth index at equal birth time); the two targets, 100 sigma apart, both stay.
+  const auto motion = models::LinearGaussianMotion::constant_velocity(2, 1.0, 1.0);
+  const auto obs = models::LinearGaussianObservation::position_of_constant_velocity(
+      2, Eigen::Matrix2d::Identity() * 4.0);
+  const Eigen::Vector4d a(0.0, 0.0, 0.0, 0.0), b(200.0, 0.0, 0.0, 0.0);
+  const Eigen::Matrix4d cov = Eigen::Vector4d(4.0, 1.0, 4.0, 1.0).asDiagonal();
+  const std::vector<filters::GaussianBirth> births = {
+      {0.9, {a, cov}}, {0.9, {a, cov}}, {0.9, {b, cov}}, {0.9, {b, cov}}};
+  Eigen::MatrixXd z(2, 2);
+  z << 1.0, 201.0, -1.0, 1.0;
+  filters::GlmbParams params;
+  params.detection_probability = 0.5;
+  params.clutter_intensity = 1e-6;
+  auto report = [&](double gate) {
+    params.estimator.duplicate_gate = gate;
+    filters::GaussianGlmbFilter glmb(motion, obs, births, params);
+    glmb.step(z);
+    std::vector<int> indices;
+    for (const auto& e : glmb.estimates()) indices.push_back(e.label.birth_index);
+    std::sort(indices.begin(), indices.end());
+    return indices;
+  };
+  EXPECT_EQ(report(0.0), (std::vector<int>{0, 1, 2, 3}));  // two labels on each target
+  EXPECT_EQ(report(9.21), (std::vector<int>{0, 2}));
+  filters::EstimatorParams bad;
+  bad.duplicate_gate = -1.0;
+  EXPECT_THROW(filters::validate(bad), InvalidArgument);
+}
+
 TEST(GlmbOcclusion, RejectsBadParameters) {
   filters::OcclusionParams p;
   p.rate = 1.0;

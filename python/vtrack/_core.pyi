@@ -194,6 +194,8 @@ class ForegroundSizeEstimator:
     @property
     def person_height(self) -> float: ...
     @property
+    def person_height_line(self) -> Dict[str, Any]: ...
+    @property
     def weight(self) -> float: ...
     @property
     def frames(self) -> int: ...
@@ -266,6 +268,7 @@ class GlmbTracker:
         label_estimator: Literal["map", "consistent"] = 'consistent',
         label_keep_bonus: float = 2.0,
         label_entry_penalty: float = 0.0,
+        label_duplicate_gate: float = 0.0,
         ranking: Literal["murty", "gibbs"] = 'murty',
         seed: int = 0,
         densities: Literal["gaussian", "particles"] = 'gaussian',
@@ -582,6 +585,7 @@ class BoxTracker:
         label_estimator: Literal["map", "consistent"] = 'map',
         label_keep_bonus: float = 2.0,
         label_entry_penalty: float = 0.0,
+        label_duplicate_gate: float = 0.0,
         max_births: int = 100,
         birth_missed_tracks: bool = False,
         confirm_frames: int = 1,

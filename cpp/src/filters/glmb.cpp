@@ -45,7 +45,8 @@ const core::ParameterTable<EstimatorParams>& EstimatorParams::table() {
           .add_choice("label_estimator", &P::estimator,
                       {{"map", LabelEstimator::map}, {"consistent", LabelEstimator::consistent}})
           .add("label_keep_bonus", &P::keep_bonus)
-          .add("label_entry_penalty", &P::entry_penalty);
+          .add("label_entry_penalty", &P::entry_penalty)
+          .add("label_duplicate_gate", &P::duplicate_gate);
   return table;
 }
 
@@ -112,6 +113,8 @@ void validate(const EstimatorParams& p) {
           ">= 0 and finite");
   require(p.entry_penalty >= 0.0 && std::isfinite(p.entry_penalty), "label_entry_penalty",
           p.entry_penalty, ">= 0 and finite");
+  require(p.duplicate_gate >= 0.0 && std::isfinite(p.duplicate_gate), "label_duplicate_gate",
+          p.duplicate_gate, ">= 0 and finite (0: off)");
 }
 
 void check_glmb_dimensions(const models::LinearGaussianMotion& motion,

@@ -186,7 +186,9 @@ PersonHeightLine ForegroundSizeEstimator::person_height_line() const {
   for (int b = 0; b < kRowBands; ++b) {
     double count = 0.0;
     const double m = band_median_height(b, h, &count);
-    if (m > 0.0 && count >= kMinBandCount) {
+    // A band whose median is under a third of the person height holds no people but specks
+    // (see the header: the area floor passes blobs as wide as they are tall).
+    if (m >= h / 3.0 && count >= kMinBandCount) {
       points.push_back({(b + 0.5) * rows_ / kRowBands, m, count});
     }
   }

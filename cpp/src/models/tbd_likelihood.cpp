@@ -147,16 +147,23 @@ void TbdLikelihood::set_row_reward() {
   reward_integral_.compute(reward_);
 }
 
-double TbdLikelihood::row_reward(const image::Rect& r,
-                                 const std::vector<image::Rect>& explained) const {
-  double sum = reward_integral_.sum(r);
-  // Pixels inside an explained region are background (eq. 13): they earn nothing.
+double TbdLikelihood::row_reward(const image::Rect& r, const std::vector<image::Rect>& explained,
+                                 double* y_sum) const {
+  // explained_sum's and the reward's loops fused: the regions are intersected once (the same
+  // sums in the same order as each alone).
+  double sum = integral_.sum(r);
+  double reward = reward_integral_.sum(r);
   for (const image::Rect& e : explained) {
     const image::Rect o = image::intersect(r, e);
-    if (o.width > 0 && o.height > 0) sum -= reward_integral_.sum(o);
+    if (o.width == 0 || o.height == 0) continue;
+    // Pixels inside an explained region are background (eq. 13): y = 1, and they earn nothing.
+    sum += static_cast<double>(o.width) * o.height - integral_.sum(o);
+    reward -= reward_integral_.sum(o);
   }
-  // Overlapping explained regions are removed twice there: the reward is at least 0.
-  return std::max(sum, 0.0);
+  // Overlapping explained regions are counted twice there: cap at "all background" (see
+  // explained_sum), and the reward at 0.
+  *y_sum = std::min(sum, static_cast<double>(r.width) * r.height);
+  return std::max(reward, 0.0);
 }
 
 double TbdLikelihood::explained_sum(const image::Rect& rect,
@@ -181,14 +188,17 @@ double TbdLikelihood::log_likelihood(float x, float y, float w, float h,
   const image::Rect r = integral_.clip(box_to_rect(x, y, w, h));
   const double m_x = static_cast<double>(r.width) * r.height;
   if (m_x <= 0.0) return log_zeta_f_ - 1.0 / params_.delta_f;  // no pixel: pure background
-  const double sum = explained_sum(r, explained);
-  const double ybar = sum / m_x;  // eq. (11)
   // log of eq. (20): m_x (1 - ybar) / (m delta_B) + log zeta_F - ybar / delta_F, with
   // m_x (1 - ybar) = m_x - sum; "row": sum_i (1 - y_i) a / a(row_i) in place of m_x - sum.
-  const double reward =
-      params_.delta_b_reference == TbdLikelihoodParams::DeltaBReference::row
-          ? row_reward(r, explained)
-          : (m_x - sum) * inv_m_delta_b_;
+  double sum = 0.0;
+  double reward = 0.0;
+  if (params_.delta_b_reference == TbdLikelihoodParams::DeltaBReference::row) {
+    reward = row_reward(r, explained, &sum);
+  } else {
+    sum = explained_sum(r, explained);
+    reward = (m_x - sum) * inv_m_delta_b_;
+  }
+  const double ybar = sum / m_x;  // eq. (11)
   return reward + log_zeta_f_ - ybar / params_.delta_f;
 }
 

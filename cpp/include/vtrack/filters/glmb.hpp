@@ -138,8 +138,18 @@ struct EstimatorParams {
   LabelEstimator estimator = LabelEstimator::consistent;
   double keep_bonus = 2.0;     // nats (consistent estimator)
   double entry_penalty = 0.0;  // nats (consistent estimator)
+  // Duplicate suppression (either estimator): of two tracks of the chosen hypothesis whose
+  // predicted detections coincide -- squared Mahalanobis distance
+  //   (H m_a - H m_b)^T (H P_a H^T + H P_b H^T)^-1 (H m_a - H m_b) <= duplicate_gate
+  // -- only the older label (earlier birth, eq. 5's l = (t, i)) is reported. Why: eq. (4)'s
+  // separable depth likelihood lets two tracks explain one person's pixels at once, so through a
+  // burst of missed detections a track born on a tracked person lives beside it (both exist
+  // with probability ~1) and the report holds both labels on one person, which an evaluation
+  // pairs with the person alternately. 0 disables.
+  double duplicate_gate = 0.0;
 
-  // label_estimator "map" | "consistent", label_keep_bonus, label_entry_penalty.
+  // label_estimator "map" | "consistent", label_keep_bonus, label_entry_penalty,
+  // label_duplicate_gate.
   static const core::ParameterTable<EstimatorParams>& table();
 };
 
@@ -427,6 +437,9 @@ class GlmbFilter {
   void cap_gates(Eigen::MatrixXd& log_detected) const;
   // The estimates of the current hypotheses (estimates_, reported_).
   void estimate();
+  // Drops from estimates_ and reported_ every estimate within duplicate_gate of an older label's
+  // (EstimatorParams::duplicate_gate).
+  void suppress_duplicates();
 
   models::LinearGaussianMotion motion_;
   models::LinearGaussianObservation observation_;

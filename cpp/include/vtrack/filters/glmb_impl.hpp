@@ -559,6 +559,60 @@ void GlmbFilter<Tracks>::estimate() {
                           tracks_[t].undetectable});
     reported_.push_back(tracks_[t].label);
   }
+  if (e.duplicate_gate > 0.0) suppress_duplicates();
+}
+
+template <class Tracks>
+void GlmbFilter<Tracks>::suppress_duplicates() {
+  // Oldest label first (birth time, then index): each estimate is kept unless its predicted
+  // detection lies within duplicate_gate (squared Mahalanobis, EstimatorParams) of a kept one's.
+  const std::size_t n = estimates_.size();
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    const TrackLabel& la = estimates_[a].label;
+    const TrackLabel& lb = estimates_[b].label;
+    return la.birth_time != lb.birth_time ? la.birth_time < lb.birth_time
+                                          : la.birth_index < lb.birth_index;
+  });
+  const Eigen::MatrixXd& H = observation_.H;
+  std::vector<Eigen::VectorXd> z(n);
+  std::vector<Eigen::MatrixXd> S(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    z[i] = H * estimates_[i].mean;
+    S[i] = H * estimates_[i].cov * H.transpose();
+  }
+  std::vector<char> keep(n, 0);
+  std::vector<std::size_t> kept;
+  for (std::size_t i : order) {
+    bool duplicate = false;
+    for (std::size_t j : kept) {
+      const Eigen::VectorXd dz = z[i] - z[j];
+      const Eigen::LDLT<Eigen::MatrixXd> sum(S[i] + S[j]);
+      // A singular sum (two point masses) is a duplicate only where the means coincide.
+      const double d2 = sum.info() == Eigen::Success && sum.isPositive() && sum.rcond() > 1e-12
+                            ? dz.dot(sum.solve(dz))
+                            : (dz.isZero(0.0) ? 0.0 : detail::kInfinity);
+      if (d2 <= params_.estimator.duplicate_gate) {
+        duplicate = true;
+        break;
+      }
+    }
+    if (duplicate) continue;
+    keep[i] = 1;
+    kept.push_back(i);
+  }
+  std::size_t out = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!keep[i]) continue;
+    if (out != i) {
+      estimates_[out] = std::move(estimates_[i]);
+      reported_[out] = reported_[i];
+    }
+    ++out;
+  }
+  estimates_.resize(out);
+  reported_.resize(out);
 }
 
 template <class Tracks>

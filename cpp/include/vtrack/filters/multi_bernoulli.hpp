@@ -63,16 +63,14 @@ struct MultiBernoulliParams {
   // data do not support a slope) instead of the one h: the birth windows and their grid, the
   // birth sizes, the size clamp range and the random walk's sigmas (per component, for a person
   // centred on its estimate). The likelihood's closing keeps the one h; the box calibration is
-  // relative to each box already. Off: on PETS09-S2L1 it scores worse (MOTA 0.333 vs 0.525, all
-  // frames, seeds 0-2), because the filter's box is a silhouette's core held up by the size
-  // clamp's minimum; benchmarks/mb_perspective.py has the figures. With the likelihood's
+  // relative to each box already. Alone it scores worse on PETS09-S2L1 (the filter's box is a
+  // silhouette's core held up by the size clamp's minimum). With the likelihood's
   // delta_b_reference "row" (which needs size_by_row) the reward follows the row too and far and
-  // near people are boxed alike; the pair is also off: PETS09-S2L1, seeds 0-2, delta_b 3e-3 and
-  // the calibration refitted on frames 1-397, MOTA / IDF1 / HOTA on all frames 0.500 / 0.558 /
-  // 0.400 against the defaults' 0.525 / 0.455 / 0.364 (second half 0.543 / 0.550 / 0.410 against
-  // 0.516 / 0.430 / 0.361): better identities, but the far people it now tracks are partly
-  // missing from MOT15's ground truth and count as false positives; held out, better at 1.5x,
-  // MOTA 0.252 against 0.590 at 0.5x (seed 0).
+  // near people are boxed alike: with delta_b 3e-3 the pair beats the defaults on MOTA, IDF1 and
+  // HOTA on all frames of PETS09-S2L1 at 768 x 576 and resized 0.4x-1.5x, but not on
+  // tests/test_track_video.py's synthetic scenes (a line fitted through three people of random
+  // heights, and delta_b 3e-3 where no line is fitted), so it is off.
+  // benchmarks/mb_perspective.py has the figures.
   bool size_by_row = false;
   // Standard deviations of the random walk x(k+1) = x(k) + e(k) (Section 4) per frame, as
   // fractions of h: positions (x, y) and sizes (w, h). PETS09-S2L1 runs at 7 frames/s, so its

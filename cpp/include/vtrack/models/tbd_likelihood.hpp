@@ -160,8 +160,11 @@ class TbdLikelihood {
   double log_zeta_f_;
   // Fills reward_ and its integral image from closed_ and the row areas.
   void set_row_reward();
-  // Sum over `rect` (clipped) of the "row" reward image, without the `explained` rectangles.
-  double row_reward(const image::Rect& rect, const std::vector<image::Rect>& explained) const;
+  // "row": the sum over `rect` (clipped) of the reward image without the `explained`
+  // rectangles, and in *y_sum that of y with them as background (explained_sum), in one pass
+  // over the explained rectangles.
+  double row_reward(const image::Rect& rect, const std::vector<image::Rect>& explained,
+                    double* y_sum) const;
 
   double inv_m_delta_b_ = 0.0;  // 1 / (m delta_B) or 1 / (a delta_B), set with the image
   double person_width_ = 0.0;
