@@ -104,11 +104,73 @@ not fully in view; a truck called light): a hard cut can leave a long vehicle se
 no view at all. Next (to develop on tuning seeds of mast_low): keep a vehicle's best-resolved
 views when none passes. Tuning seed 100 re-run with it: gantry 100 % / 5 of 5, mast_high 100 % /
 5 of 5, side 100 % / 3 of 5 (a truck and a bus called light, a van not in view; every view, last
-session: at or near 100 %), so max_length_resolution is off by default (0: every view, the behaviour before). Still below the bar: light accuracy 89.7-96.9 % on mast_low, side, wide,
+session: at or near 100 %), so max_length_resolution was left off by default (0: every view; superseded by the per-vehicle factor below, and the side figure corrected there). Still below the bar: light accuracy 89.7-96.9 % on mast_low, side, wide,
 mast_high (cars called heavy), found 92-95 % on mast_low and wide_distorted.
 Estimator cost (exact silhouettes, every 2nd frame, update() from Python, CPU time, median of 5):
 gantry seed 300 23.7 us per vehicle-frame (every view: 47.4 us, same run), mast_high seed 100
 47.4 us (47.3 us): the resolution test costs nothing measurable, and dropped views skip the chain.
+
+Issue 13, views by resolution per vehicle (this session; tuning seeds 100-400 only while choosing).
+The cut is now per vehicle: a view is used when its length's resolution is at most
+max(max_length_resolution, length_resolution_factor x the vehicle's best view). Correction to the
+log above: "every view" on side seed 100 is 3 of 5 heavies with today's build too (run here, same
+build as the rows below: truck and bus as light), so the fixed cut did not cost side anything;
+the older 5 of 5 was an earlier pipeline's. Found / light / heavy / MAE W H L m, same scenes
+(--scene-dir), `--video-set max_length_resolution=X length_resolution_factor=Y`:
+  scene (tuning)     every view (0, 0)         cut 2 m (2, 0)            cut 2 m + factor 2 (2, 2)  factor 4 alone (0, 4)
+  gantry 300 (40)    38/40 8 of 9 0.11 0.16 1.00  8 of 9 0.10 0.12 0.79  38/40 8 of 9 0.10 0.13 0.80  38/40 9 of 9 0.13 0.11 0.76
+  gantry 400 (40)    39/40 4 of 6 0.22 0.32 1.45  6 of 6 0.09 0.09 0.64  = the cut (best views < 1 m)  39/40 5 of 6 0.15 0.12 0.95
+  side 100 (20)      20/20 3 of 5 0.34 0.17 0.50  3 of 5 0.34 0.17 0.50  20/20 3 of 5 0.34 0.17 0.50  20/20 4 of 5 0.32 0.17 0.50
+  gantry 100 (20)    (earlier) 5 of 5             5 of 5 0.07 0.14 0.58  20/20 5 of 5 0.07 0.14 0.52  20/20 5 of 5 0.09 0.13 0.56
+  mast_high 100 (20) (earlier) 5 of 5             5 of 5 0.17 0.19 0.54  20/20 5 of 5 0.17 0.19 0.54  20/20 5 of 5 0.18 0.13 0.39
+Light vehicles 100 % in every cell. side 100 with factor 10 alone: 3 of 5 (0.36 0.17 0.53); the factor
+trades the gantry's far views against the low/oblique cameras' few good ones, 4 measured best of 4
+and 10 on side.
+(every view and the cut on gantry 300/400: last session's rows above; the relaxed cut equals the
+cut wherever a vehicle's best view is finer than 1 m, as under the gantry.) A low camera at low
+resolution (tests/test_vehicle_estimator.py: mast_low at 320x180, exact silhouettes): the fixed
+2 m cut leaves two articulated lorries no view and calls a truck light; the relaxed cut and the
+factor alone call all four right. The fixed cut is in metres per pixel, so at a third of the
+resolution it keeps three times fewer views: a pixel constant in disguise. The default is
+therefore the factor alone, 4 (max_length_resolution 0): a ratio of one vehicle's own views, the
+same at any resolution; it measured better than every view on each tuning scene it was run on.
+Not run for lack of time: mast_low and wide_distorted tuning scenes (seed 700 was being rendered).
+
+Held out, once, with these defaults (factor 4 alone), seed 500, 40 vehicles, all five set-ups
+(`--video-only --video-vehicles 40 --video-seed 500 --video-setups S`, one set-up per process);
+found / light / heavy / MAE W H L m / naive 2-D light / heavy at its oracle threshold (same run) /
+last session's cut 2 m and, where measured, every view:
+  mast_low        38/40  93.5 % / 6 of 7 / 0.28 0.08 1.05  naive 67.7 / 100 %   cut: 93.5 % / 5 of 7 / 0.28 0.07 0.96; every view: 93.5 % / 7 of 7 / 0.48 0.15 1.29
+  gantry          40/40  97.0 % / 7 of 7 / 0.16 0.21 1.00  naive 81.8 / 100 %   cut: 100 % / 7 of 7 / 0.12 0.10 0.84; every view: heavy 3 of 7
+  side            39/40 100.0 % / 7 of 7 / 0.19 0.10 0.35  naive 100 / 100 %    cut: 96.9 % / 7 of 7 / 0.29 0.09 0.41
+  wide_distorted  38/40 100.0 % / 6 of 6 / 0.18 0.12 0.51  naive 96.9 / 100 %   cut: 96.9 % / 6 of 6 / 0.21 0.08 0.38
+  mast_high       39/40  96.9 % / 7 of 7 / 0.21 0.11 0.49  naive 100 / 100 %    cut: 100 % / 7 of 7 / 0.21 0.11 0.48
+Wrong: mast_low a truck as light and two cars as heavy, gantry a car with trailer as heavy,
+mast_high a car as heavy. Against every view the factor keeps the gantry's heavies (3 -> 7 of 7)
+and mast_low's MAE down (L 1.29 -> 1.05 m) but loses mast_low's one truck (7 -> 6 of 7); against
+the fixed cut it wins side and wide_distorted's light (96.9 -> 100 %) and a mast_low heavy, loses
+a car on gantry and mast_high. Still below the bar: found 95 % on mast_low and wide_distorted,
+light 93.5-97 % on mast_low, gantry, mast_high; naive 2-D ties on side and mast_high (100 / 100 %,
+an oracle threshold). Seeds 600 (side, wide_distorted) and 900 were not rendered (~10-20 min each
+on this machine under load): not run.
+
+Estimator cost with the per-vehicle cut (exact silhouettes, even frames, update() from Python,
+CPU time, median of 3, same run; the machine loaded by other jobs): gantry seed 300 (3404
+vehicle-frames) every view 47.1 us, cut 2 m 52.0, cut 2 m + factor 2 53.9, factor 4 (default)
+47.8 us; mast_high seed 100 (869) 33.8, 44.8, 45.2, 35.4 us. Keeping each used view's ray term
+(to drop it when a better view tightens the bound) costs nothing measurable; under 0.1 ms.
+
+Identity through blob joins (tried, not kept). Diagnosis, gantry seed 300: the truck of lane 1
+emerges from the distance behind a car already tracked, the two one blob from the truck's first
+frame (its image box 20 px tall reaches down onto the car's), so no second track exists and the
+"covers the predicted boxes of two tracks" test cannot fire; the car's track takes the pair's
+outline for ~60 frames and, when they part, continues with the truck. Tried: a blob covering half
+or more of a road-predicted track box with 2x its area (off the image border) is a join: the track
+coasts, no estimator update. On 3 small gantry scenes (480x270, 3 vehicles in 2 lanes, 0.2 s gaps,
+seeds 0-2, old vs join rule): one better (fewer frames of no single vehicle), one unchanged, one
+worse: receding followers (lane 1 under the gantry drives away from it) never part, the coasting
+track drifted and took a second truck (L 1.02 m, light). A join rule must tell approaching from
+receding pairs and re-acquire after long coasts; left for the next session.
 """
 
 import argparse

@@ -231,9 +231,11 @@ def test_far_views_do_not_shrink_a_vehicle_under_a_gantry(tmp_path):
     behind one another: in the distance a pixel row is metres of road and following vehicles run
     together into one blob, so a far view's ray reads a length tens of metres too long, as a taller
     vehicle. Regression: every view counted alike, those rays outvoted the near ones and the car
-    of lane 1 came out 1.06 m long (true 4.42 m; the default, every view, below); with
-    max_length_resolution = 2 views whose length is resolved worse than 2 m per pixel are not
-    used, and every length is within 1 m."""
+    of lane 1 came out 1.06 m long (true 4.42 m; every view, below); with the default
+    (length_resolution_factor = 4: views resolved within 4 times the vehicle's best) or a fixed
+    max_length_resolution = 2 m per pixel the far views are not used: every length within 2 m
+    with the default (the second truck, from its few near views, 1.6 m short), within 1 m with the
+    fixed cut."""
     from vtrack.synthetic_road import CAMERA_SETUPS
     import dataclasses
     setup = dataclasses.replace(CAMERA_SETUPS["gantry"], focal=450.0, image_width=480, image_height=270)
@@ -241,7 +243,9 @@ def test_far_views_do_not_shrink_a_vehicle_under_a_gantry(tmp_path):
                             lane_speeds=[25.0, 25.0], class_mix={"car": 0.4, "truck": 0.6})
     paths = scene.write(tmp_path / "scene", video="video.mkv")
     truth = {v.id: v for v in scene.vehicles}
-    for params, bound in (({"max_length_resolution": 2.0}, 1.0), ({}, None)):
+    every_view = {"max_length_resolution": 0.0, "length_resolution_factor": 0.0}
+    for params, bound in (({}, 2.0), ({"max_length_resolution": 2.0, "length_resolution_factor": 0.0}, 1.0),
+                          (every_view, None)):
         vehicles, rows = vtrack.vehicles.measure_vehicles(paths["video"], paths["camera"], return_tracks=True,
                                                           **params)
         matched = match_to_truth(paths, rows)
@@ -252,3 +256,30 @@ def test_far_views_do_not_shrink_a_vehicle_under_a_gantry(tmp_path):
             assert all(abs(d) < bound for d in errors.values()), errors
         else:  # every view: the car behind the trucks collapses to min_size's length
             assert errors["car3"] < -3.0, errors
+
+
+def test_resolution_cut_keeps_a_low_cameras_best_views():
+    """The low mast (6 m, pitch 12 deg) at a third of its resolution (320x180, focal 300 px), heavy
+    traffic, exact silhouettes: a tall vehicle's far roof corner lands tens of metres down the
+    road, so its length is resolved worse than 2 m per pixel in every view. Regression: the fixed
+    cut max_length_resolution = 2 leaves two articulated lorries no view (not fully in view) and
+    calls an 8.6 m truck light from two views; relaxed to twice each vehicle's best view
+    (length_resolution_factor = 2) every vehicle keeps its best views and is called right."""
+    from vtrack.synthetic_road import CAMERA_SETUPS
+    import dataclasses
+    setup = dataclasses.replace(CAMERA_SETUPS["mast_low"], image_width=320, image_height=180, focal=300.0)
+    scene = make_road_scene(setup, n_vehicles=4, seed=3, class_mix={"articulated": 0.5, "truck": 0.3, "car": 0.2})
+    c = scene.camera_file()
+    cam = vtrack.vehicles.Camera(c["K"], c["dist"], c["R"], c["t"], image_size=tuple(c["image_size"]))
+    views = [(k + 1, v.id, scene.silhouette(v, k)) for k in range(0, scene.n_frames, 2) for v in scene.present(k)]
+    views = [view for view in views if view[2] is not None]
+    truth = {v.id: v for v in scene.vehicles}
+    fixed = run(cam, views, max_length_resolution=2.0, length_resolution_factor=0.0)
+    assert sum(not e["valid"] or (e["light_heavy"] == "heavy") != truth[e["vehicle_id"]].heavy for e in fixed) >= 2
+    relaxed = run(cam, views, max_length_resolution=2.0, length_resolution_factor=2.0)
+    everything = {e["vehicle_id"]: e for e in run(cam, views, length_resolution_factor=0.0)}
+    for e in relaxed + run(cam, views):  # and the default, the factor 4 alone
+        v = truth[e["vehicle_id"]]
+        assert e["valid"] and (e["light_heavy"] == "heavy") == v.heavy, (v.cls, v.L, e)
+        # Only the views within the factor of the best: fewer than every view, more than one.
+        assert 1 < e["frames_used"] < everything[e["vehicle_id"]]["frames_used"]

@@ -331,6 +331,55 @@ TEST(VehicleDimensionEstimator, FramesUsedAndVehiclesNeverFullyInView) {
   EXPECT_EQ(est.estimates().size(), 3u);
 }
 
+// The resolution cut is per vehicle: with a fixed cut finer than any view of a vehicle seen only
+// from afar, the cut alone leaves it no view (not fully in view); relaxed to a factor of its best
+// view, it keeps exactly the views within that factor, whatever order they come in (approaching:
+// the coarse views first and dropped later; receding: refused at once), and the "rays" posterior
+// is the closed-form one given exactly those views.
+TEST(VehicleDimensionEstimator, ResolutionCutIsRelaxedToEachVehiclesBestViews) {
+  const Camera cam = mast_camera();
+  const Eigen::Vector3d whl(2.5, 3.8, 12.0), m(2.3, 3.2, 10.0), s(0.3, 0.5, 2.0);
+  std::vector<Eigen::Matrix2Xd> approaching;
+  std::vector<VehicleObservation> views;
+  double best = std::numeric_limits<double>::infinity();
+  for (double along = 66.0; along >= 36.0; along -= 3.0) {
+    approaching.push_back(silhouette(cam, corners_at(cam, 4.3, along, whl(0), whl(1), whl(2))));
+    views.push_back(models::observe_silhouette(cam, approaching.back()));
+    best = std::min(best, views.back().edge_resolution(1));
+  }
+  auto p = chain_params(VehicleSampler::Rays, 20000);
+  p.proposal_scale = 0.3;  // two far rays leave L metres wide: longer steps, thinned, to mix
+  p.thinning = 10;
+  p.max_length_resolution = 0.5 * best;  // no view passes the fixed cut
+  p.length_resolution_factor = 0.0;      // alone
+  const std::vector<models::VehicleModel> one{{"only", m, s, 1.0, false}};
+  filters::VehicleDimensionEstimator fixed(cam, one, p);
+  for (std::size_t k = 0; k < approaching.size(); ++k) fixed.update_polygon(1, static_cast<int>(k) + 1, approaching[k]);
+  EXPECT_FALSE(fixed.estimate(1).valid);
+
+  p.length_resolution_factor = 1.3;
+  std::vector<VehicleObservation> used;
+  for (const auto& v : views) {
+    if (v.edge_resolution(1) <= 1.3 * best) used.push_back(v);
+  }
+  ASSERT_GE(used.size(), 2u);
+  ASSERT_LT(used.size(), views.size());
+  filters::VehicleDimensionEstimator relaxed(cam, one, p), receding(cam, one, p);
+  for (std::size_t k = 0; k < approaching.size(); ++k) {
+    relaxed.update_polygon(1, static_cast<int>(k) + 1, approaching[k]);
+    receding.update_polygon(1, static_cast<int>(k) + 1, approaching[approaching.size() - 1 - k]);
+  }
+  const auto [mu, cov] = gaussian_posterior(used, m, s, p.likelihood.sigma_w);
+  for (const auto* est : {&relaxed, &receding}) {
+    const auto e = est->estimate(1);
+    ASSERT_TRUE(e.valid);
+    EXPECT_EQ(e.frames_used, static_cast<int>(used.size()));
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_NEAR(e.dimensions(k), mu(k), 4.0 * std::sqrt(cov(k, k) / 1000.0)) << "dimension " << k;
+    }
+  }
+}
+
 TEST(VehicleDimensionEstimator, ParametersAreValidated) {
   const auto bad = [](auto set) {
     VehicleEstimatorParams p;
@@ -346,6 +395,8 @@ TEST(VehicleDimensionEstimator, ParametersAreValidated) {
   bad([](VehicleEstimatorParams& p) { p.likelihood.sigma_h = 0.0; });
   bad([](VehicleEstimatorParams& p) { p.heavy_volume = 0.0; });
   bad([](VehicleEstimatorParams& p) { p.border_margin_px = -1.0; });
+  bad([](VehicleEstimatorParams& p) { p.max_length_resolution = std::nan(""); });
+  bad([](VehicleEstimatorParams& p) { p.length_resolution_factor = 0.5; });
   // The table names every field.
   const auto& t = VehicleEstimatorParams::table();
   VehicleEstimatorParams p;

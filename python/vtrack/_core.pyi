@@ -743,6 +743,7 @@ class VehicleDimensionEstimator:
         decision: Literal["auto", "mean", "last"] = "auto",
         border_margin_px: float = 1.0,
         max_length_resolution: float = 0.0,
+        length_resolution_factor: float = 4.0,
         seed: int = 0,
     ) -> None: ...
     def update(self, vehicle_id: int, silhouette: ArrayLike, frame: Optional[int] = None) -> bool: ...

@@ -242,6 +242,7 @@ const core::ParameterTable<VehicleEstimatorParams>& VehicleEstimatorParams::tabl
                             .add_choice("decision", &P::decision, vehicle_decision_names())
                             .add("border_margin_px", &P::border_margin_px)
                             .add("max_length_resolution", &P::max_length_resolution)
+                            .add("length_resolution_factor", &P::length_resolution_factor)
                             .add("seed", &P::seed);
   return t;
 }
@@ -261,8 +262,12 @@ void validate(const VehicleEstimatorParams& p) {
           "a positive finite number (m^3)");
   require(p.border_margin_px >= 0.0 && std::isfinite(p.border_margin_px), "border_margin_px", p.border_margin_px,
           "a finite number >= 0 (pixels)");
-  require(p.max_length_resolution >= 0.0, "max_length_resolution", p.max_length_resolution,
-          "a number >= 0 (metres per pixel; 0: every view)");
+  require(p.max_length_resolution >= 0.0 && std::isfinite(p.max_length_resolution), "max_length_resolution",
+          p.max_length_resolution, "a finite number >= 0 (metres per pixel; 0: no fixed cut)");
+  require(p.length_resolution_factor == 0.0 || (p.length_resolution_factor >= 1.0 &&
+                                                std::isfinite(p.length_resolution_factor)),
+          "length_resolution_factor", p.length_resolution_factor,
+          "0 (off) or a finite number >= 1 (a factor of the vehicle's best view's resolution)");
 }
 
 void RaySums::add(const VehicleObservation& obs, const models::RayLikelihoodParams& p) {
@@ -276,6 +281,12 @@ void RaySums::add(const VehicleObservation& obs, const models::RayLikelihoodPara
   A += M;
   g += M * obs.a;
   ++frames;
+}
+
+void RaySums::add(const RaySums& other) {
+  A += other.A;
+  g += other.g;
+  frames += other.frames;
 }
 
 VehiclePosterior sample_vehicle_frame(const VehicleObservation& obs, const VehicleModelPrior& prior,
@@ -367,15 +378,57 @@ bool VehicleDimensionEstimator::touches_border(const Eigen::Ref<const Eigen::Mat
          polygon.row(0).maxCoeff() >= c.image_width - 1 - m || polygon.row(1).maxCoeff() >= c.image_height - 1 - m;
 }
 
+// The resolution cut of "frames used" (header): max(max_length_resolution, factor * best).
+double VehicleDimensionEstimator::resolution_bound(double best) const {
+  if (params_.max_length_resolution == 0.0 && params_.length_resolution_factor == 0.0) return kInf;
+  return std::max(params_.max_length_resolution, params_.length_resolution_factor * best);
+}
+
+// Drops the used views that a better best view has put beyond the bound; the "rays" sums are
+// rebuilt from the remaining views' own factors (no subtraction: no cancellation).
+void VehicleDimensionEstimator::drop_coarse_views(Track& t) const {
+  const double bound = resolution_bound(t.best_resolution);
+  const bool rays = params_.sampler == VehicleSampler::Rays;
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < t.resolution.size(); ++i) {
+    if (t.resolution[i] > bound) continue;
+    t.resolution[kept] = t.resolution[i];
+    t.means[kept] = t.means[i];
+    t.class_probability[kept] = t.class_probability[i];
+    if (rays) t.ray_terms[kept] = t.ray_terms[i];
+    ++kept;
+  }
+  if (kept == t.resolution.size()) return;
+  t.resolution.resize(kept);
+  t.means.resize(kept);
+  t.class_probability.resize(kept);
+  if (!rays) return;
+  t.ray_terms.resize(kept);
+  t.rays = RaySums{};
+  for (const auto& term : t.ray_terms) t.rays.add(term);
+}
+
 bool VehicleDimensionEstimator::add(Track& t, const VehicleObservation& obs) {
   const auto heights = obs.feasible_heights(min_size_of(params_));
   if (!(heights.first <= heights.second)) return false;  // smaller than min_size from any height
-  if (params_.max_length_resolution > 0.0 && obs.edge_resolution(1) > params_.max_length_resolution) return false;  // too far to tell its length
-  if (params_.sampler == VehicleSampler::Rays) t.rays.add(obs, params_.likelihood);
+  const double resolution = obs.edge_resolution(1);
+  if (resolution < t.best_resolution) {
+    t.best_resolution = resolution;
+    drop_coarse_views(t);
+  }
+  if (resolution > resolution_bound(t.best_resolution)) return false;  // too far to tell its length
+  if (params_.sampler == VehicleSampler::Rays) {
+    RaySums term;
+    term.add(obs, params_.likelihood);
+    t.rays.add(term);
+    t.ray_terms.push_back(term);
+  }
+  // After drops that took every earlier view, the vehicle starts afresh (no x* from dropped views).
   const bool first = t.means.empty();
   t.last = sample_vehicle_frame(obs, prior_, first ? nullptr : &t.last, t.rays, params_, t.rng);
   t.means.push_back(t.last.mean);
   t.class_probability.push_back(t.last.class_probability);
+  t.resolution.push_back(resolution);
   return true;
 }
 

@@ -41,16 +41,29 @@
 //     border, its far-most corner is not the vehicle's and its ray is wrong: it is not used. A ray
 //     whose feasible segment is empty (a silhouette smaller than min_size from any height, e.g. a
 //     degenerate polygon) is not used either. A vehicle with no used frame is reported as never
-//     fully in view, with no dimensions and no class. Optionally, nor is a view whose box length
-//     is resolved worse than max_length_resolution metres of road per pixel (VehicleObservation::
-//     edge_resolution, near and far edge combined): the ray through the far corner then says
-//     little about the length, yet with S in metres for every view it weighs as much as a near
-//     one; and it is there, in the distance, that perspective runs following vehicles together
-//     into one blob. Under a 7.5 m gantry looking along its lane a pixel row is 7 m of road at
-//     200 m, and vehicles emerging from the distance one behind the other came as one outline for
-//     tens of frames: their rays (a length tens of metres too long, read by the far, shallow ray
-//     as a taller vehicle) outvoted the near views, and the near views then gave the rays' product
-//     a length at min_size (cars as L 1.0 m, H 2.4 m; an 8 m truck as 1.0 m, light).
+//     fully in view, with no dimensions and no class. Nor is a view whose box length is resolved
+//     too coarsely (VehicleObservation::edge_resolution, near and far edge combined, metres of road
+//     per pixel): the ray through the far corner then says little about the length, yet with S in
+//     metres for every view it weighs as much as a near one; and it is there, in the distance,
+//     that perspective runs following vehicles together into one blob. Under a 7.5 m gantry
+//     looking along its lane a pixel row is 7 m of road at 200 m, and vehicles emerging from the
+//     distance one behind the other came as one outline for tens of frames: their rays (a length
+//     tens of metres too long, read by the far, shallow ray as a taller vehicle) outvoted the near
+//     views, and the near views then gave the rays' product a length at min_size (cars as L 1.0 m,
+//     H 2.4 m; an 8 m truck as 1.0 m, light).
+//     The cut is per vehicle, over its whole passage: a view is used when its resolution r is
+//     at most max(max_length_resolution, length_resolution_factor * r_best), r_best the best
+//     resolution among the vehicle's usable views (border and min_size tests passed). A fixed cut
+//     alone can leave a long vehicle seen by a low camera no view at all (it never comes near
+//     enough whole); relaxing it to a factor of the vehicle's own best keeps its best-resolved
+//     views, and where some view passes the fixed cut it changes nothing. Which frames: every
+//     usable frame of the passage, decided against the best of them all. Online, r_best only
+//     improves, so the bound only tightens: a view refused when it came is never needed later,
+//     and a view used earlier is dropped (its ray leaves the "rays" sums, its point estimate the
+//     "mean" decision) when a better view tightens the bound; the chain re-runs on each accepted
+//     view, so the last posterior is always the one given exactly the used views. (For the x*
+//     samplers a dropped frame's chain has already shaped x* of the next frames.) update() thus
+//     says whether a frame is used so far; frames_used is the final count.
 //   * the per-vehicle decision (decision): "mean" averages the per-frame point estimates and the
 //     per-frame class probabilities over the used frames (every full view counts once: with the x*
 //     variants a frame's posterior remembers the earlier ones only through x*); "last" takes the
@@ -116,14 +129,15 @@ struct VehicleEstimatorParams {
   double heavy_volume = 45.0;  // m^3, for light_heavy_rule = "volume" (see above)
   VehicleDecision decision = VehicleDecision::Auto;
   double border_margin_px = 1.0;  // a silhouette this close to the image border is cut by it
-  // Metres of road per pixel (VehicleObservation::edge_resolution of the length) above which a
-  // view is not used (see "frames used"); 0 = every view (the default). 2 m, on
-  // benchmarks/vehicles.py's gantry tuning scenes (seeds 200, 300, 400), took MAE L from
-  // 0.75 / 1.00 / 1.45 m to 0.42 / 0.79 / 0.64 m and heavy from 6/6, 8/9, 4/6 to 6/6, 8/9, 6/6 (held
-  // out, seed 500: 3/7 -> 7/7); but it lost heavies on side (tuning seed 100: 5/5 -> 3/5) and on
-  // mast_low (held out: 7/7 -> 5/7), where a long vehicle may have no view resolved that well, so it
-  // stays off by default. Metres, so the same distances are used at any resolution.
+  // The resolution cut of "frames used": a view is used when its length's resolution (metres of
+  // road per pixel) is at most max(max_length_resolution, length_resolution_factor * the
+  // vehicle's best). 0 and 0 = every view; factor 0 = the fixed cut alone. The default is the
+  // factor alone, 4: a ratio of one vehicle's own views, so the same views at any image
+  // resolution and lens (a fixed 2 m per pixel keeps 3x fewer views at a third of the
+  // resolution, and none of a lorry under a low mast), and on the gantry it drops the far merged
+  // views a fixed 2 m dropped (benchmarks/vehicles.py, tuning seeds: the tables are there).
   double max_length_resolution = 0.0;
+  double length_resolution_factor = 4.0;
   std::uint64_t seed = 0;
 
   static const core::ParameterTable<VehicleEstimatorParams>& table();
@@ -146,6 +160,7 @@ struct RaySums {
   Eigen::Vector3d g = Eigen::Vector3d::Zero();
   int frames = 0;
   void add(const models::VehicleObservation& obs, const models::RayLikelihoodParams& likelihood);
+  void add(const RaySums& other);
   // -1/2 (x^T A x - 2 g^T x): the log of the product of the added ray likelihoods, up to a constant.
   double log_likelihood(const Eigen::Vector3d& x) const { return -0.5 * x.dot(A * x) + g.dot(x); }
 };
@@ -199,9 +214,14 @@ class VehicleDimensionEstimator {
     int first_frame = 0, last_frame = 0, frames_seen = 0;
     std::vector<Eigen::Vector3d> means;             // per used frame
     std::vector<Eigen::VectorXd> class_probability; // per used frame
+    std::vector<double> resolution;                 // per used frame, edge_resolution of the length
+    std::vector<RaySums> ray_terms;                 // per used frame ("rays"): its own factor
+    double best_resolution = std::numeric_limits<double>::infinity();
     VehiclePosterior last;
     RaySums rays;
   };
+  double resolution_bound(double best) const;
+  void drop_coarse_views(Track& t) const;
   Track& track(int vehicle_id, int frame);
   bool touches_border(const Eigen::Ref<const Eigen::Matrix2Xd>& polygon) const;
   bool add(Track& t, const models::VehicleObservation& obs);
