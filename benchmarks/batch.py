@@ -75,6 +75,27 @@ local cluster start 0.90 s. Two earlier runs after the change (their one-core ro
 benchmark process, whose later rows then kept its pinned threads; corrected since) gave 2 workers
 1.73x and 2.08x the plain loop.
 
+Session 7 (2026-11-24 23:44-23:53), idle machine (1-min load 1.2-1.7, the run's own processes),
+after the person-size estimator's own connected-components statistics and with every sequential
+loop in a fresh process, two runs of ``--repeats 3``, medians (seconds / CPU seconds):
+
+| configuration | run 1 | run 2 |
+|---|---|---|
+| sequential loop, KDE 1 thread (the bar's reference) | 8.87 / 9.91 | 8.94 / 9.98 |
+| sequential loop, KDE default threads | 7.46 / 10.70 | 7.28 / 10.47 |
+| batch's task in a loop, no Dask | 9.76 / 10.80 | 9.85 / 11.05 |
+| batch, 1 worker | 9.44 / 11.33 | 9.47 / 11.35 |
+| batch, 2 workers | 5.58 / 10.83 | 5.38 / 10.56 |
+
+2 workers: 1.59x / 1.66x the sequential loop (bar 1.8x: FAIL), whose 1.12 cores put the 2-core
+ceiling at 1.79x; 1.75x / 1.83x the batch's own task run in a loop; 1.78x / 1.85x the loop's CPU
+seconds (one core's worth of its work). Dask's per task: 3.4 ms with tasks in flight (0.37 % of a
+100-frame clip, bar 1 %: PASS), 11 ms alone. The whole pipeline is ~20 % cheaper than in the runs
+above (the sequential loop 9.9 CPU seconds, was 12-13): cv::connectedComponentsWithStats is gone.
+The batch's task cost 9-11 % more CPU than the plain loop in both runs, though one process running
+track_video plainly, with a progress callback, and with the batch's config dict measured the same
+(10.5-11.3 CPU seconds each, in turn): a cost of the first run in a fresh process, or noise.
+
 How far to trust these: identical work differs by up to 15 % in CPU seconds between rows of one
 run on this VM (the plain loop 10.66 s, the task loop 12.05 s above), and the plain loop's ratio
 ranged 1.43x-2.08x over three runs of the same command. The 2-worker batch is at the machine's
