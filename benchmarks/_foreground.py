@@ -87,14 +87,21 @@ def select(rows: np.ndarray, first: int, last: int) -> np.ndarray:
     return rows[(rows[:, 0] >= first) & (rows[:, 0] <= last)]
 
 
-def mota_idf1(gt: np.ndarray, tracks: np.ndarray) -> Tuple[float, float]:
-    """TrackEval's MOTA and IDF1 only (no HOTA: 10x faster, for the tuning grids)."""
+def clear_identity(gt: np.ndarray, tracks: np.ndarray):
+    """TrackEval's CLEAR and Identity results and the sequence data (GT rows with conf 0 dropped;
+    no HOTA: 10x faster, for the tuning grids)."""
     trackeval = _trackeval()
     gt = gt[gt[:, 6] != 0]
     data = _sequence_data(gt, tracks.reshape(-1, 10) if tracks.size else np.zeros((0, 10)))
     with contextlib.redirect_stdout(io.StringIO()):
         clear = trackeval.metrics.CLEAR({"PRINT_CONFIG": False}).eval_sequence(data)
         ident = trackeval.metrics.Identity({"PRINT_CONFIG": False}).eval_sequence(data)
+    return clear, ident, data
+
+
+def mota_idf1(gt: np.ndarray, tracks: np.ndarray) -> Tuple[float, float]:
+    """TrackEval's MOTA and IDF1 only."""
+    clear, ident, _ = clear_identity(gt, tracks)
     return float(clear["MOTA"]), float(ident["IDF1"])
 
 

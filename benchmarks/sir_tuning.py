@@ -18,8 +18,6 @@ do, with decoding); this is the masks -> tracker part only.
 from __future__ import annotations
 
 import argparse
-import contextlib
-import io
 import os
 import sys
 import time
@@ -28,10 +26,10 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(__file__))
 from _foreground import (CACHE, apply_calibration, default_gt, default_video,  # noqa: E402
-                         fit_calibration, read_frames, select)
+                         clear_identity, fit_calibration, read_frames, select)
 
 import vtrack  # noqa: E402
-from vtrack.evaluate import _sequence_data, _trackeval, box_iou_matrix  # noqa: E402
+from vtrack.evaluate import box_iou_matrix  # noqa: E402
 from vtrack.io import mot_rows, read_mot  # noqa: E402
 
 RAW_BOX = dict(box_scale_w=1.0, box_scale_h=1.0, box_offset_x=0.0, box_offset_y=0.0)
@@ -62,12 +60,7 @@ def run(masks: np.ndarray, last: int, seed: int, params: dict) -> np.ndarray:
 
 
 def scores(gt: np.ndarray, tracks: np.ndarray) -> dict:
-    trackeval = _trackeval()
-    gt = gt[gt[:, 6] != 0]
-    data = _sequence_data(gt, tracks.reshape(-1, 10) if tracks.size else np.zeros((0, 10)))
-    with contextlib.redirect_stdout(io.StringIO()):
-        clear = trackeval.metrics.CLEAR({"PRINT_CONFIG": False}).eval_sequence(data)
-        ident = trackeval.metrics.Identity({"PRINT_CONFIG": False}).eval_sequence(data)
+    clear, ident, data = clear_identity(gt, tracks)
     return {"MOTA": float(clear["MOTA"]), "IDF1": float(ident["IDF1"]),
             "FP": int(clear["CLR_FP"]), "FN": int(clear["CLR_FN"]), "IDSW": int(clear["IDSW"]),
             "IDs": int(data["num_tracker_ids"])}
