@@ -128,6 +128,43 @@ TEST(KdeBackground, SelectiveUpdateSkipsForegroundPixelsAtMostMaxSkipsTimes) {
   }
 }
 
+// update_static: a person in the first sample (stored whole) who leaves at frame 1 uncovers
+// background A, which stays unchanged from sample frame 2 on. Without it the uncovered pixels are
+// skipped twice (max_skips 2) and the ghost lasts to frame 8; with it they are taken from sample
+// frame 4 on (the same as on sample frame 2), so y rises two sample periods earlier. Once the
+// stack is full the rule is off: a person who then stands still is skipped as before. Kernels
+// are 0 or 1 as above; y inside the square is the fraction of samples equal to A.
+TEST(KdeBackground, UpdateStaticTakesStartUpGhostsIntoTheStackWhileItFills) {
+  const cv::Vec3b a(50, 100, 150), b(200, 30, 60);
+  const cv::Rect square(4, 3, 5, 4);
+  auto frame = [&](bool person) {
+    cv::Mat f(12, 16, CV_8UC3, cv::Scalar(a[0], a[1], a[2]));
+    if (person) f(square).setTo(cv::Scalar(b[0], b[1], b[2]));
+    return f;
+  };
+  KdeBackgroundParams p = no_closing(4, 2);
+  p.update_threshold = 0.5;
+  p.update_max_skips = 2;
+  const double off[] = {1, 0, 0, 0, 0, 0, 0, 0.25, 0.25, 0.5};
+  const double on[] = {1, 0, 0, 0, 0, 1.0 / 3, 1.0 / 3, 0.5, 0.5, 0.75};
+  for (const bool update_static : {false, true}) {
+    p.update_static = update_static;
+    KdeBackground model(p);
+    cv::Mat y;
+    for (int k = 0; k < 10; ++k) {
+      model.apply(frame(k == 0), y);
+      EXPECT_NEAR(y.at<float>(5, 6), update_static ? on[k] : off[k], 1e-6)
+          << "frame " << k << " update_static " << update_static;
+    }
+  }
+  // The stack is full (frames 2 (a repeat of B), 4, 6, 8): a person arriving at frame 10 and
+  // standing still is skipped on sample frames 10 and 12, not taken as static.
+  KdeBackground model(p);
+  cv::Mat y;
+  for (int k = 0; k < 14; ++k) model.apply(frame(k == 0 || k >= 10), y);
+  EXPECT_NEAR(y.at<float>(5, 6), 0.0, 1e-6);
+}
+
 // Illumination compensation: a frame that is the sample under 1.3 x the light has the same r, g
 // and 1.3 x the intensity. Eq. (10) sees foreground (the intensity kernel alone, computed here
 // independently); compensated, the intensity is scaled back and y = 1.
