@@ -95,8 +95,9 @@ below MOG2 + ByteTrack's and KNN + SORT's. 0.5x (`--variants 0.5x,1.5x --methods
 one core: 8.1 s CPU for 795 frames (16 s wall on the loaded machine). Cached-foreground protocol
 (benchmarks/sir_tuning.py, seeds 0-4, calibration fitted on 1-397), MOTA / IDF1: predicted
 association alone 1-397 0.527 / 0.520, 398-795 0.689 / 0.530, all 0.609 / 0.493; with
-update_static 0.580 / 0.551, 0.693 / 0.482, 0.637 / 0.481 (FP on 1-397 644 -> 535; the 398-795
-foreground is the same, so its IDF1 change is the runs' divergence, +-0.05 between settings).
+update_static 0.580 / 0.551, 0.693 / 0.482, 0.637 / 0.481 (FP on 1-397 644 -> 535; update_static acts only while the
+stack fills, frames 0-90, so the 398-795 IDF1 change is mostly the runs' divergence: settings
+that leave 398-795 alone moved its IDF1 by up to 0.05 in these runs).
 
 The re-clustering SIR (issue 12 part 1), measured again 2026-11-24 23:25 after its second tuning
 pass (size_by_row, relabel_overlap 0.1; the table at the end of this paragraph's tuning notes):
