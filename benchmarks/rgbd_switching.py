@@ -299,7 +299,8 @@ METHODS = {
     "gaussian, detection-only": dict(density="gaussian", switching=False),
 }
 # --ablations: the switching model without its one deviation from the paper (eq. 4 on the raw
-# depth image, detections' footprints not blanked), with births scored without depth, without
+# depth image, detections' footprints not blanked), with the whole of each detection's footprint
+# blanked (before issue 17's fourth round), with births scored without depth, without
 # occlusion ordering, with resampling unregularised (the particle filters before issue 17's
 # second round), every tracker without the duplicate gate (before its third round); with MAP
 # labels (the estimator before issue 17) or with r_U counting detections that missed tracks
@@ -315,6 +316,8 @@ ABLATIONS = {
                                             depth_for_births=False),
     "switching, no occlusion ordering": dict(density="particle", switching=True,
                                              occlusion_margin=float("inf")),
+    "switching, whole footprints masked": dict(density="particle", switching=True,
+                                               mask_depth_margin=float("inf")),
     "switching, MAP labels (before issue 17)": dict(density="particle", switching=True,
                                                     label_estimator="map"),
     "switching, r_U with missed tracks": dict(density="particle", switching=True,
