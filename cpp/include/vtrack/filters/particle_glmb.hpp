@@ -129,10 +129,10 @@ struct ParticleParams {
   // explain: a missed person walking in front of a detected one (or in front of a clutter
   // detection's large near-depth footprint) keeps those pixels as evidence. +inf blanks the whole
   // footprint (the behaviour before this option). Why: followed event by event
-  // (benchmarks/rgbd_switching.py, seeds 15-16), most re-births after a burst were a track that
-  // died 1-3 scans into the burst while 2-6 cm from its person, whose footprint scored +6 to +7
-  // nats on the unmasked image: a detection of someone just behind them had blanked their pixels,
-  // which then voted "background". The margin is occlusion_margin's (3 sigma of the detections'
+  // (benchmarks/rgbd_switching.py, seeds 15-16), re-births after a burst were tracks that died
+  // in the burst a few cm from their person; four of seven followed scored +4.5 to +7.4 nats at
+  // the person on the unmasked image: a detection of someone just behind them had blanked their
+  // pixels, which then voted "background". The margin is occlusion_margin's (3 sigma of the detections'
   // depth noise), not tuned. Measured on seeds 0-24 (totals, switching filter): bursts kept 146 ->
   // 179, fragmentations 175 -> 128, label switches 187 -> 183; OSPA(2) better on three of the
   // five seed sets (0.739 -> 0.674 on 0-4), worse on 15-19 (0.774 -> 0.779) and 20-24 (0.734 ->
