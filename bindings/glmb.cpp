@@ -62,7 +62,8 @@ sqrt(weight)) and cap, pruning, the squared Mahalanobis gate (inf = none), the a
 rate and cap, ranking "murty" (exact) or "gibbs" (Vo, Vo & Hoang's sampler, seeded), seed,
 densities "gaussian" (Kalman; the default) or "particles" (n_particles per track, resampled
 when N_eff < resample_threshold n_particles, regularised with regularise; the switching model's
-options depth_for_births, mask_detections, occlusion_margin, occluded_detection_probability), and
+options depth_for_births, mask_detections, mask_depth_margin, occlusion_margin,
+occluded_detection_probability), and
 the reporting options confirm_frames, lost_memory, relabel_overlap.
 
 step() returns vtrack.Tracks: ids 1, 2, ... in the order labels are first reported, scores =

@@ -291,9 +291,10 @@ def test_duplicate_gate_reports_one_label_on_a_depth_carried_person():
     # detections at frame 53 just as a second label is born on them; through the burst eq. (4)'s
     # separable depth likelihood keeps both tracks on the person's pixels (with probability ~1
     # each), and the report holds both labels, a few cm apart, which the per-frame matching pairs
-    # with the person alternately (measured: 23 frames with two estimates within 0.5 m of one
-    # person, 9 label switches). With label_duplicate_gate (the scene's default, 11.34) only the
-    # older label is reported: no frame with two estimates on one person, no switch.
+    # with the person alternately (measured: 24 frames with two estimates within 0.5 m of one
+    # person, 3 label switches; 23 and 9 with mask_depth_margin=inf, the mask before issue 17's
+    # fourth round). With label_duplicate_gate (the scene's default, 11.34) only the older label
+    # is reported: no frame with two estimates on one person, no switch.
     scene = make_rgbd_scene(seed=15, frames=300)
     n = 80
     scene.detections, scene.truth_ids = scene.detections[:n], scene.truth_ids[:n]
@@ -306,7 +307,7 @@ def test_duplicate_gate_reports_one_label_on_a_depth_carried_person():
 
     before = run(scene.tracker(particles=300, seed=15, label_duplicate_gate=0.0), scene)
     assert doubled_frames(before) >= 10  # the old report: the test can tell the two apart
-    assert identity_events(scene, before).label_switches >= 4
+    assert identity_events(scene, before).label_switches >= 2
     after = run(scene.tracker(particles=300, seed=15), scene)
     assert scene.tracker().params["label_duplicate_gate"] == 11.34
     assert doubled_frames(after) == 0

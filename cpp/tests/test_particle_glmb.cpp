@@ -114,6 +114,11 @@ TEST(ParticleGlmb, RejectsBadInput) {
   pp.n_particles = 1;
   EXPECT_THROW(ParticleGlmbFilter(motion3(), observation3(), {birth3()}, GlmbParams{}, pp),
                InvalidArgument);
+  ParticleParams negative_margin;
+  negative_margin.mask_depth_margin = -0.1;
+  EXPECT_THROW(ParticleGlmbFilter(motion3(), observation3(), {birth3()}, GlmbParams{},
+                                  negative_margin),
+               InvalidArgument);
   auto bad_birth = birth3();
   bad_birth.density.cov(0, 0) = -1.0;  // not positive definite
   EXPECT_THROW(ParticleGlmbFilter(motion3(), observation3(), {bad_birth}), InvalidArgument);
@@ -161,4 +166,53 @@ TEST(ParticleGlmb, VanishingLikelihoodsNeverProduceNaN) {
       EXPECT_TRUE(e.cov.allFinite());
     }
   }
+}
+
+TEST(ParticleGlmb, DetectionMaskKeepsTheSurfaceInFrontOfTheDetection) {
+  // A missed person A at D = 2 m stands in front of a detected person B at D = 3 m, 0.2 m to the
+  // side: A hides most of B's rectangle. The detection's footprint T(z_B) covers part of A's
+  // pixels. With mask_depth_margin 0.3 only the pixels of T(z_B) at depth >= 2.7 are blanked, so A
+  // keeps every pixel of its own; with +inf the whole T(z_B) is blanked (A loses the overlap, which
+  // then votes "background"). Expected scores: DepthLikelihood::log_ratio on the image masked here
+  // independently (cv::compare on the raw image), with the detection's occluder.
+  const auto model = depth_model();
+  const Eigen::Vector3d a(0.0, 0.6, 2.0), b(0.2, 0.6, 3.0);
+  cv::Mat depth = cv::Mat::zeros(120, 160, CV_32F);
+  const image::Rect ra = model.footprint(a.x(), a.y(), a.z());
+  const image::Rect rb = model.footprint(b.x(), b.y(), b.z());
+  const cv::Rect rect_a(ra.x, ra.y, ra.width, ra.height), rect_b(rb.x, rb.y, rb.width, rb.height);
+  depth(rect_b).setTo(3.0f);
+  depth(rect_a).setTo(2.0f);  // nearer: drawn last
+  ASSERT_GT((rect_a & rect_b).area(), 0);
+
+  Eigen::VectorXd mean(6);
+  mean << a.x(), 0.0, a.y(), 0.0, a.z(), 0.0;
+  const Eigen::MatrixXd cov = Eigen::VectorXd::Constant(6, 1e-4).asDiagonal();
+  const models::GaussianDensity at_a{mean, cov};
+  auto scores = [&](double margin, Eigen::VectorXd& expected) {
+    ParticleParams pp;
+    pp.n_particles = 200;
+    pp.mask_depth_margin = margin;
+    filters::ParticleTracks tracks(pp, 7, motion3(), observation3(), model);
+    tracks.set_depth(&depth, b);
+    auto c = tracks.candidate(tracks.birth(at_a), observation3(), false);
+    cv::Mat masked = depth.clone();
+    cv::Mat blank;
+    cv::compare(masked(rect_b), b.z() - margin, blank, cv::CMP_GE);
+    masked(rect_b).setTo(0.0f, blank);
+    auto frame = model.frame(masked);
+    frame.occluders.push_back({rb, b.z() + pp.occlusion_margin});
+    expected.resize(c.predicted_z.cols());
+    model.log_ratio(frame, c.predicted_z, expected);
+    return c.depth_log_ratio;
+  };
+  Eigen::VectorXd expected_kept, expected_blanked;
+  const Eigen::VectorXd kept = scores(0.3, expected_kept);
+  const Eigen::VectorXd blanked = scores(std::numeric_limits<double>::infinity(), expected_blanked);
+  ASSERT_EQ(kept.size(), 200);
+  EXPECT_LT((kept - expected_kept).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_LT((blanked - expected_blanked).cwiseAbs().maxCoeff(), 1e-9);
+  // A's own pixels are evidence for A only when they are kept.
+  EXPECT_GT(kept.mean(), blanked.mean() + 1.0);
+  EXPECT_GT(kept.mean(), 0.0);
 }

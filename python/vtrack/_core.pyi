@@ -279,6 +279,7 @@ class GlmbTracker:
         depth_for_births: bool = True,
         mask_detections: bool = True,
         occlusion_margin: float = 0.3,
+        mask_depth_margin: float = 0.3,
         occluded_detection_probability: bool = False,
         confirm_frames: int = 1,
         lost_memory: int = 0,

@@ -47,6 +47,7 @@ const core::ParameterTable<ParticleParams>& ParticleParams::table() {
           .add("depth_for_births", &P::depth_for_births)
           .add("mask_detections", &P::mask_detections)
           .add("occlusion_margin", &P::occlusion_margin)
+          .add("mask_depth_margin", &P::mask_depth_margin)
           .add("occluded_detection_probability", &P::occluded_detection_probability);
   return table;
 }
@@ -55,6 +56,8 @@ void validate(const ParticleParams& p) {
   require(p.n_particles >= 2 && p.n_particles <= core::kMaxParticles, "n_particles", p.n_particles,
           "in [2, 1000000]");
   require(p.occlusion_margin >= 0.0, "occlusion_margin", p.occlusion_margin, ">= 0 (or inf: off)");
+  require(p.mask_depth_margin >= 0.0, "mask_depth_margin", p.mask_depth_margin,
+          ">= 0 (or inf: the whole footprint)");
   require(p.resample_threshold >= 0.0 && p.resample_threshold <= 1.0, "resample_threshold",
           p.resample_threshold, "in [0, 1]");
 }
@@ -101,7 +104,11 @@ void ParticleTracks::set_depth(const cv::Mat* depth,
     if (detections.rows() != 3) break;  // the filter reports the shape error
     const image::Rect r = depth_model_->footprint(detections(0, j), detections(1, j), detections(2, j));
     if (r.width > 0 && r.height > 0 && r.x + r.width <= masked.cols && r.y + r.height <= masked.rows) {
-      masked(cv::Rect(r.x, r.y, r.width, r.height)).setTo(0.0);
+      // Only the pixels the detection can explain: at its depth or behind it. A nearer surface
+      // in T(z_j) is in front of the detection (a missed person passing before it) and keeps
+      // its depth (mask_depth_margin; +inf blanks the whole footprint).
+      cv::Mat footprint = masked(cv::Rect(r.x, r.y, r.width, r.height));
+      footprint.setTo(0.0, footprint >= detections(2, j) - params_.mask_depth_margin);
       if (std::isfinite(params_.occlusion_margin)) {
         occluders.push_back({r, detections(2, j) + params_.occlusion_margin});
       }
