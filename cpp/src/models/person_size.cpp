@@ -192,7 +192,7 @@ PersonHeightLine ForegroundSizeEstimator::person_height_line() const {
       points.push_back({(b + 0.5) * rows_ / kRowBands, m, count});
     }
   }
-  if (points.size() < 3) return line;
+  if (points.size() < 2) return line;
   // Weighted Theil-Sen: the weighted median of the pairwise slopes, then of the intercepts.
   std::vector<std::pair<double, double>> pairs;
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -201,12 +201,29 @@ PersonHeightLine ForegroundSizeEstimator::person_height_line() const {
                          points[i].count * points[j].count);
     }
   }
+  double rising = 0.0, pair_total = 0.0;
+  for (const auto& p : pairs) {
+    pair_total += p.second;
+    if (p.first > 0.0) rising += p.second;
+  }
   const double slope = weighted_median(pairs);
   pairs.clear();
   for (const auto& p : points) pairs.emplace_back(p.height - slope * p.row, p.count);
   const double intercept = weighted_median(pairs);
+  double fitting = 0.0, count_total = 0.0;
+  for (const auto& p : points) {
+    count_total += p.count;
+    const double predicted = slope * p.row + intercept;
+    if (std::fabs(p.height - predicted) <= kLineTolerance * predicted) fitting += p.count;
+  }
+  line.rising_share = rising / pair_total;
+  line.fit_share = fitting / count_total;
   const double top = points.front().row, bottom = points.back().row;
   // Not supported: see the header comment.
+  if (points.size() < static_cast<std::size_t>(kMinLineBands) ||
+      line.rising_share < kMinRisingShare || line.fit_share < kMinFitShare) {
+    return line;
+  }
   if (!(slope > 0.0) || slope * (bottom - top) < 0.1 * h) return line;
   const double h_top = slope * top + intercept, h_bottom = slope * bottom + intercept;
   if (!(h_top > 0.0)) return line;
