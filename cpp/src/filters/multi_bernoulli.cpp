@@ -166,6 +166,8 @@ MultiBernoulliFilter::MultiBernoulliFilter(int width, int height,
   person_height_.set_fit_line(
       params_.size_by_row ||
       params_.likelihood.delta_b_reference == models::TbdLikelihoodParams::DeltaBReference::row);
+  // A few people in lanes fit a spurious line (models/person_size.hpp).
+  person_height_.set_require_well_supported_line(true);
   set_size_prior(person_size_prior(params_, params_.width_mean, person_height_.height()));
 }
 

@@ -53,6 +53,11 @@ double weighted_median(std::vector<std::pair<double, double>>& pairs) {
 
 }  // namespace
 
+bool PersonHeightLine::well_supported() const {
+  return by_row && bands >= kMinLineBands && rising_share >= kMinRisingShare &&
+         fit_share >= kMinFitShare;
+}
+
 double PersonHeightLine::at(double foot_row) const {
   if (!by_row) return intercept;
   return std::clamp(slope * foot_row + intercept, min_height, max_height);
@@ -214,16 +219,14 @@ PersonHeightLine ForegroundSizeEstimator::person_height_line() const {
   for (const auto& p : points) {
     count_total += p.count;
     const double predicted = slope * p.row + intercept;
-    if (std::fabs(p.height - predicted) <= kLineTolerance * predicted) fitting += p.count;
+    if (std::fabs(p.height - predicted) <= PersonHeightLine::kLineTolerance * predicted) fitting += p.count;
   }
   line.rising_share = rising / pair_total;
   line.fit_share = fitting / count_total;
   const double top = points.front().row, bottom = points.back().row;
+  line.bands = static_cast<int>(points.size());
+  if (points.size() < 3) return line;
   // Not supported: see the header comment.
-  if (points.size() < static_cast<std::size_t>(kMinLineBands) ||
-      line.rising_share < kMinRisingShare || line.fit_share < kMinFitShare) {
-    return line;
-  }
   if (!(slope > 0.0) || slope * (bottom - top) < 0.1 * h) return line;
   const double h_top = slope * top + intercept, h_bottom = slope * bottom + intercept;
   if (!(h_top > 0.0)) return line;
