@@ -23,7 +23,9 @@ THE DEFAULT (2026-11-25, third session): "row" with a line that needs support.
 
 The synthetic scenes of tests/test_track_video.py were worse with "row" (above: seed 3 0.760 /
 0.875, seed 4 0.897 / 0.947 against 0.935 / 0.966 and 0.941 / 0.969). Two changes, both where
-the scene gives no evidence of perspective: (1) models/person_size.cpp fits the line only from
+the scene gives no evidence of perspective: (1) the tracker uses the line
+(models::PersonHeightLine::well_supported; the SIR does not ask it, its IDF1 on 1-397 fell from
+0.487 to 0.425 with it) only from
 five row bands of people or more with 85 % of the components within 15 % of the line
 (fit_share; rising_share, the weighted share of band pairs rising with the row, at least 0.6).
 Printed on the "row" tracker's closed y: scene 3 with 5 bands fit_share 0.58-0.79 (the 3-band
