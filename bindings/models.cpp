@@ -225,6 +225,8 @@ counted, as a fraction of the image; aspect: a person's width / height.
             d["min_height"] = line.min_height;
             d["max_height"] = line.max_height;
             d["by_row"] = line.by_row;
+            d["rising_share"] = line.rising_share;
+            d["fit_share"] = line.fit_share;
             return d;
           },
           "The person height by foot row, h = slope x row + intercept (px) clamped to "

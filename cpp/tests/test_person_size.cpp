@@ -151,6 +151,47 @@ TEST(ForegroundSizeEstimator, FallsBackToTheConstantWithoutPerspective) {
   EXPECT_EQ(ForegroundSizeEstimator().person_height_line().intercept, 0.0);
 }
 
+// People walking in lanes (PersonHeightLine::well_supported, what the multi-Bernoulli tracker
+// asks of a line): a few people, each filling one row band for many frames, are no evidence of
+// perspective, whatever their heights (the counts are components x frames, not
+// people). Five people in five lanes on the line h = 0.25 foot - 10 give it; three lanes (the
+// heights of tests/test_track_video.py's scene 3, which fitted a spurious line) give none, nor
+// five lanes whose heights rise with the row but where two people are 30 % taller than the line
+// through the other three (a fit share of 0.6).
+TEST(ForegroundSizeEstimator, AFewPeopleInLanesAreNoLine) {
+  auto observe_lanes = [](const std::vector<std::pair<int, double>>& lanes) {
+    ForegroundSizeEstimator est(std::numeric_limits<double>::infinity(), 1e-4, 0.35);
+    for (int frame = 0; frame < 20; ++frame) {
+      std::vector<cv::Rect> blobs;
+      for (const auto& [foot, height] : lanes) {
+        const int h = static_cast<int>(std::lround(height));
+        const int w = static_cast<int>(std::lround(0.35 * height));
+        blobs.push_back({10 + 4 * frame + 100 * static_cast<int>(blobs.size()), foot - h + 1, w, h});
+      }
+      est.observe(with_blobs(blobs, 640, 480));
+    }
+    return est.person_height_line();
+  };
+  auto truth = [](double foot) { return 0.25 * foot - 10.0; };
+  std::vector<std::pair<int, double>> five;
+  for (const int foot : {165, 225, 285, 345, 405}) five.emplace_back(foot, truth(foot));
+  const auto line = observe_lanes(five);
+  ASSERT_TRUE(line.well_supported());
+  EXPECT_NEAR(line.slope, 0.25, 0.25 * 0.05);
+  EXPECT_GT(line.fit_share, 0.99);
+  EXPECT_GT(line.rising_share, 0.99);
+
+  EXPECT_FALSE(
+      observe_lanes({{47 * 2, 36 * 2}, {137 * 2, 59 * 2}, {231 * 2, 51 * 2}}).well_supported());
+
+  five[1].second *= 1.3;
+  five[3].second *= 1.3;
+  const auto off = observe_lanes(five);
+  EXPECT_FALSE(off.well_supported());
+  EXPECT_GE(off.rising_share, vtrack::models::PersonHeightLine::kMinRisingShare);  // rising: 0.8
+  EXPECT_NEAR(off.fit_share, 0.6, 0.01);
+}
+
 // PETS09's top rows at small resolutions: walls, windows and tree tops leave blobby specks, as
 // wide as they are tall, big enough by area to pass the person floor (a 15 x 15 px square holds
 // the area of a person a third of the median height, ~22 of ~67 px). Bands full of them would

@@ -291,19 +291,24 @@ TEST(TbdLikelihood, RowReferenceFitsPeopleOfEverySizeAlike) {
   printed_lik.set_image(y);
   TbdLikelihoodParams row = image;
   row.delta_b_reference = TbdLikelihoodParams::DeltaBReference::row;
+  row.delta_b_row = 10.0 * image.delta_b;  // without row areas delta_b holds, not this
   TbdLikelihood by_row(row);
   by_row.set_person_size(0.4 * 160, 160);
-  by_row.set_image(y);  // no row areas yet: every weight is 1, eq. (20) as printed
+  by_row.set_image(y);  // no row areas yet: eq. (20) as printed with delta_b
   for (const auto& b : std::vector<std::array<float, 4>>{{40, 60, 40, 90}, {150, 100, 70, 200}}) {
     EXPECT_NEAR(by_row.log_likelihood(b[0], b[1], b[2], b[3]),
                 printed_lik.log_likelihood(b[0], b[1], b[2], b[3]), 1e-4);
   }
-  by_row.set_row_areas(areas);
-  by_row.set_image(y);
+  // With row areas delta_b_row is eq. (20)'s delta_B: the same as the printed one here.
+  row.delta_b_row = image.delta_b;
+  TbdLikelihood weighted(row);
+  weighted.set_person_size(0.4 * 160, 160);
+  weighted.set_row_areas(areas);
+  weighted.set_image(y);
   std::array<std::array<double, 3>, 3> fr_row{}, fr_image{};
   for (int k = 0; k < 3; ++k) {
     const double h = heights[k], w = 0.4 * h, cy = h / 0.8;
-    fr_row[k] = best_box_fractions(by_row, cxs[k], cy, w, h);
+    fr_row[k] = best_box_fractions(weighted, cxs[k], cy, w, h);
     fr_image[k] = best_box_fractions(printed_lik, cxs[k], cy, w, h);
   }
   for (int k = 0; k < 3; ++k)

@@ -77,7 +77,9 @@ void validate(const MultiBernoulliParams& p) {
   // faint foreground (PETS09-S2L1, seed 0: MOTA -0.20 on all frames).
   if (p.likelihood.delta_b_reference == models::TbdLikelihoodParams::DeltaBReference::row &&
       !p.size_by_row) {
-    throw InvalidArgument("delta_b_reference 'row' needs size_by_row true, got size_by_row false");
+    throw InvalidArgument(
+        "delta_b_reference 'row' (the default) needs size_by_row true, got size_by_row false "
+        "(set delta_b_reference 'image' with it)");
   }
   require(std::isfinite(p.width_mean) && p.width_mean >= 0.0, "width_mean", p.width_mean,
           ">= 0 (0: size_aspect x height)");
@@ -164,6 +166,8 @@ MultiBernoulliFilter::MultiBernoulliFilter(int width, int height,
   person_height_.set_fit_line(
       params_.size_by_row ||
       params_.likelihood.delta_b_reference == models::TbdLikelihoodParams::DeltaBReference::row);
+  // A few people in lanes fit a spurious line (models/person_size.hpp).
+  person_height_.set_require_well_supported_line(true);
   set_size_prior(person_size_prior(params_, params_.width_mean, person_height_.height()));
 }
 

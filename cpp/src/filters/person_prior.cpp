@@ -77,7 +77,13 @@ bool PersonHeight::observe(const cv::Mat& y, float threshold, double person_area
   if (!(h > 0.0)) return false;
   learnt_ = true;
   height_ = h;
-  if (fit_line_) line_ = estimator_.person_height_line();
+  if (fit_line_) {
+    line_ = estimator_.person_height_line();
+    if (require_well_supported_ && !line_.well_supported()) {
+      line_ = models::PersonHeightLine{};
+      line_.intercept = estimator_.person_height();  // the constant (by_row false)
+    }
+  }
   return true;
 }
 

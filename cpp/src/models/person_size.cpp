@@ -53,6 +53,11 @@ double weighted_median(std::vector<std::pair<double, double>>& pairs) {
 
 }  // namespace
 
+bool PersonHeightLine::well_supported() const {
+  return by_row && bands >= kMinLineBands && rising_share >= kMinRisingShare &&
+         fit_share >= kMinFitShare;
+}
+
 double PersonHeightLine::at(double foot_row) const {
   if (!by_row) return intercept;
   return std::clamp(slope * foot_row + intercept, min_height, max_height);
@@ -192,7 +197,7 @@ PersonHeightLine ForegroundSizeEstimator::person_height_line() const {
       points.push_back({(b + 0.5) * rows_ / kRowBands, m, count});
     }
   }
-  if (points.size() < 3) return line;
+  if (points.size() < 2) return line;
   // Weighted Theil-Sen: the weighted median of the pairwise slopes, then of the intercepts.
   std::vector<std::pair<double, double>> pairs;
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -201,11 +206,26 @@ PersonHeightLine ForegroundSizeEstimator::person_height_line() const {
                          points[i].count * points[j].count);
     }
   }
+  double rising = 0.0, pair_total = 0.0;
+  for (const auto& p : pairs) {
+    pair_total += p.second;
+    if (p.first > 0.0) rising += p.second;
+  }
   const double slope = weighted_median(pairs);
   pairs.clear();
   for (const auto& p : points) pairs.emplace_back(p.height - slope * p.row, p.count);
   const double intercept = weighted_median(pairs);
+  double fitting = 0.0, count_total = 0.0;
+  for (const auto& p : points) {
+    count_total += p.count;
+    const double predicted = slope * p.row + intercept;
+    if (std::fabs(p.height - predicted) <= PersonHeightLine::kLineTolerance * predicted) fitting += p.count;
+  }
+  line.rising_share = rising / pair_total;
+  line.fit_share = fitting / count_total;
   const double top = points.front().row, bottom = points.back().row;
+  line.bands = static_cast<int>(points.size());
+  if (points.size() < 3) return line;
   // Not supported: see the header comment.
   if (!(slope > 0.0) || slope * (bottom - top) < 0.1 * h) return line;
   const double h_top = slope * top + intercept, h_bottom = slope * bottom + intercept;

@@ -16,6 +16,7 @@ const core::ParameterTable<TbdLikelihoodParams>& TbdLikelihoodParams::table() {
   static const auto table = core::ParameterTable<P>()
                                 .add("delta_f", &P::delta_f)
                                 .add("delta_b", &P::delta_b)
+                                .add("delta_b_row", &P::delta_b_row)
                                 .add_choice("delta_b_reference", &P::delta_b_reference,
                                             {{"person", P::DeltaBReference::person},
                                              {"image", P::DeltaBReference::image},
@@ -32,6 +33,8 @@ void validate(const TbdLikelihoodParams& p) {
   if (!(p.delta_b > 0.0) || !std::isfinite(p.delta_b)) {
     throw InvalidArgument("delta_b must be a positive finite number, got " + value_text(p.delta_b));
   }
+  require(p.delta_b_row > 0.0 && std::isfinite(p.delta_b_row), "delta_b_row", p.delta_b_row,
+          "a positive finite number");
   if (p.closing_size < 0 || (p.closing_size > 1 && p.closing_size % 2 == 0)) {
     throw InvalidArgument("closing_size must be 0, 1 or an odd number, got " +
                           std::to_string(p.closing_size));
@@ -111,22 +114,23 @@ void TbdLikelihood::set_image(const cv::Mat& y) {
   image::close_square(y, closed_, closing_pixels(), 1, &closing_workspace_);
   integral_.compute(closed_);
   // Eq. (20)'s m delta_B, or a delta_B with a the person prior's area (see delta_b).
+  // "row" without row areas is "image" with delta_b (see delta_b_row).
+  row_weighted_ = params_.delta_b_reference == Reference::row && !row_areas_.empty();
   const double area = person ? person_width_ * person_height_ : static_cast<double>(y.total());
-  inv_m_delta_b_ = 1.0 / (area * params_.delta_b);
-  if (params_.delta_b_reference == Reference::row) set_row_reward();
+  inv_m_delta_b_ = 1.0 / (area * (row_weighted_ ? params_.delta_b_row : params_.delta_b));
+  if (row_weighted_) set_row_reward();
 }
 
 void TbdLikelihood::set_row_reward() {
   // Each pixel's reward (1 - y_i) a / (a(row_i) m delta_B) (see delta_b: eq. 14's weighted
   // average), summed over boxes by a second integral image.
-  if (!row_areas_.empty() && row_areas_.size() != static_cast<std::size_t>(closed_.rows)) {
+  if (row_areas_.size() != static_cast<std::size_t>(closed_.rows)) {
     throw InvalidArgument("the likelihood's row areas cover " + std::to_string(row_areas_.size()) +
                           " rows, the image has " + std::to_string(closed_.rows));
   }
   reward_.create(closed_.size(), CV_32FC1);
   for (int r = 0; r < closed_.rows; ++r) {
-    const double weight =
-        row_areas_.empty() ? 1.0 : person_width_ * person_height_ / row_areas_[std::size_t(r)];
+    const double weight = person_width_ * person_height_ / row_areas_[std::size_t(r)];
     const auto c = static_cast<float>(weight * inv_m_delta_b_);
     const float* in = closed_.ptr<float>(r);
     float* out = reward_.ptr<float>(r);
@@ -180,7 +184,7 @@ double TbdLikelihood::log_likelihood(float x, float y, float w, float h,
   // m_x (1 - ybar) = m_x - sum; "row": sum_i (1 - y_i) a / a(row_i) in place of m_x - sum.
   double sum = 0.0;
   double reward = 0.0;
-  if (params_.delta_b_reference == TbdLikelihoodParams::DeltaBReference::row) {
+  if (row_weighted_) {
     reward = row_reward(r, explained, &sum);
   } else {
     sum = explained_sum(r, explained);

@@ -88,6 +88,8 @@ class PersonHeight {
   // Whether observe also fits the line (off by default: it costs a pass over the row bands'
   // histograms per frame, which only size_by_row uses).
   void set_fit_line(bool on) { fit_line_ = on; }
+  // Whether a line must also be well supported (PersonHeightLine::well_supported) to be used.
+  void set_require_well_supported_line(bool on) { require_well_supported_ = on; }
 
   // Counts the foreground components of y (CV_32FC1, y < threshold is foreground). Returns true
   // when height() changed. The initial guess stays until the decayed area of the components
@@ -103,6 +105,7 @@ class PersonHeight {
   bool learnt_ = false;
   models::PersonHeightLine line_;
   bool fit_line_ = false;
+  bool require_well_supported_ = false;
 };
 
 }  // namespace vtrack::filters

@@ -34,10 +34,27 @@
 // people (PETS09 below 768 x 576: at 0.6x they made the slope 0.31 against the annotations' 0.23
 // and the far people half their height) are no people of the scene. The line is the weighted
 // Theil-Sen fit through the bands' medians (median of pairwise slopes, each pair weighted by the
-// product of the bands' counts; a third of the bands can be groups or noise without moving it). It falls back to the constant person_height() when the data do not
-// support a slope: fewer than three bands with min_band_count components each, a slope that is
-// not positive (the horizon above the people: any camera looking down), or a line that changes
-// the height by less than a tenth over the rows where people were seen (an overhead camera).
+// product of the bands' counts; a third of the bands can be groups or noise without moving it).
+// It falls back to the constant person_height() when the data do not support a slope: fewer
+// than three bands with kMinBandCount components each, a slope that is not positive (the horizon
+// above the people: any camera looking down), or a line that changes the height by less than a
+// tenth over the rows where people were seen (an overhead camera).
+//
+// The multi-Bernoulli tracker asks more of a line (PersonHeightLine::well_supported; the
+// re-clustering SIR does not: on PETS09 frames 1-397, seeds 0-2, benchmarks/sir_tuning.py, its
+// IDF1 fell from 0.487 to 0.425 with it, MOTA 0.512 to 0.510, not looked into):
+//  - fewer than kMinLineBands (5) bands with kMinBandCount components each. The counts are
+//    components x frames, not people: a few people walking in lanes fill a band each, and three
+//    points are a line to the fit whatever the people's heights (tests/test_track_video.py's
+//    scene 3: people of 36, 59 and 51 px at feet rows 47, 137 and 231 gave a slope of 0.26, then
+//    0.09, and the tracker boxed the middle person by a height 25 % off);
+//  - bands that do not agree on it: less than kMinRisingShare (60 %) of the weight of the band
+//    pairs rising with the row (rising_share, a weighted Kendall concordance), or less than
+//    kMinFitShare (85 %) of the components in bands whose median is within kLineTolerance (15 %)
+//    of the line (fit_share). Measured on the "row" MB tracker's closed y: PETS09-S2L1 at
+//    768 x 576 with 5 bands or more (from frame 11) rising_share 0.69-1.00 (0.99-1.00 from frame
+//    80) and fit_share 0.89-1.00; scene 3 with 5 bands 0.73-0.78 and 0.58-0.79, so the fit share
+//    is what tells them apart: PETS09 has its line from frame 11, scene 3 none.
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -52,6 +69,20 @@ struct PersonHeightLine {
   double slope = 0.0, intercept = 0.0;
   double min_height = 0.0, max_height = 0.0;
   bool by_row = false;
+  // How well the bands' medians support the fitted line (0 when fewer than two bands hold
+  // people): the weighted share of band pairs whose heights rise with the row (weights as in the
+  // Theil-Sen fit), and the count-weighted share of bands whose median is within kLineTolerance
+  // of the line.
+  double rising_share = 0.0, fit_share = 0.0;
+  int bands = 0;  // row bands of people the line was fitted through
+  // The stricter support the multi-Bernoulli tracker asks of a line (see the header comment):
+  // by_row, at least kMinLineBands bands, rising_share >= kMinRisingShare and fit_share >=
+  // kMinFitShare, fit_share counting the bands within kLineTolerance of the line.
+  static constexpr int kMinLineBands = 5;
+  static constexpr double kMinRisingShare = 0.6;
+  static constexpr double kMinFitShare = 0.85;
+  static constexpr double kLineTolerance = 0.15;
+  bool well_supported() const;
   double at(double foot_row) const;
 };
 
