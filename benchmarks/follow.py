@@ -155,6 +155,17 @@ but 10 % on a whole update, 116 -> 105 us): both dropped then; with the cheaper 
 conversion is now a larger share (a third of a kernel-weighted update at N = 30), so that
 vectorised quantiser is the next thing to measure for the N = 30 bar.
 
+2026-11-25 (session 8, an AVX-512 Xeon; other sessions' machines differ, so compare ratios within
+one run only): perf of an update on the frames decoded beforehand (as this benchmark feeds them)
+put 36 % of it on the first load of each region row of the frame (DRAM: each row is a new
+stretch a stride away, which the hardware prefetcher does not foresee). HsvBinImage::assign now
+prefetches the row four ahead (hint T0; 2 or 8 rows ahead and hint T1 were no better in
+color_micro). One run of `--figure "" --trackers NONE --seeds 0 --speed-particles 30 90` before
+and after (CPU ms per frame, NumPy kernel filter / vtrack default, ratio): N = 30 0.80 / 0.14
+(5.7x) -> 0.69 / 0.09 (7.7x); N = 90 1.89 / 0.24 (7.8x) -> 1.72 / 0.18 (9.5x); the unweighted
+filter at N = 30 4.2x -> 7.7x; AUCs identical. The bar (10x) is still not met at N = 30: what is
+left of an update is the moment counting (~52 %) and the quantiser (~39 %).
+
 The NumPy color PF (sigma = 0.2, seed 0) at N = 30 / 90 / 210: 0.64 / 1.36 / 2.75 CPU ms per
 frame, AUC occluded 0.439 / 0.454 / 0.473, clean 0.407 / 0.438 / 0.435. CSRT is the tracker to
 beat on both kinds of segment; the color PF loses less than CSRT on the occluded frames

@@ -314,11 +314,16 @@ TEST(KdeBackground, RejectsBadParameters) {
 
 TEST(CloseSquare, EqualsOpenCvClosing) {
   cv::RNG rng(11);
-  for (int size : {3, 5, 7}) {
-    for (cv::Size s : {cv::Size(1, 1), cv::Size(2, 9), cv::Size(37, 23), cv::Size(64, 3)}) {
-      cv::Mat src(s, CV_32FC1), ours, theirs;
+  // Radii 1-5 take the unrolled passes, 6 and 7 the general ones; images smaller than the window,
+  // one as wide as it, and one large enough for several row stripes on 2 threads.
+  for (int size : {3, 5, 7, 9, 11, 13, 15}) {
+    for (cv::Size s : {cv::Size(1, 1), cv::Size(2, 9), cv::Size(37, 23), cv::Size(64, 3),
+                       cv::Size(size, size), cv::Size(160, 120)}) {
+      cv::Mat src(s, CV_32FC1), ours, theirs, two_threads;
       rng.fill(src, cv::RNG::UNIFORM, 0.0f, 1.0f);
       close_square(src, ours, size, 1);
+      close_square(src, two_threads, size, 2);
+      EXPECT_EQ(cv::norm(ours, two_threads, cv::NORM_INF), 0.0) << size << " on " << s;
       cv::morphologyEx(src, theirs, cv::MORPH_CLOSE, cv::Mat::ones(size, size, CV_8U));
       EXPECT_EQ(cv::norm(ours, theirs, cv::NORM_INF), 0.0) << size << " on " << s;
       cv::Mat in_place = src.clone();

@@ -1,6 +1,7 @@
 #include "vtrack/image/morphology.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -12,45 +13,95 @@ namespace {
 
 struct Max {
   float operator()(float a, float b) const { return std::max(a, b); }
+  static float identity() { return -std::numeric_limits<float>::infinity(); }
 };
 struct Min {
   float operator()(float a, float b) const { return std::min(a, b); }
+  static float identity() { return std::numeric_limits<float>::infinity(); }
 };
 
-// dst = Op over the size x size square around each pixel of src (src and dst distinct), pixels
-// outside the image ignored. Separable: the vertical Op of the rows in the window into a row
-// buffer, then the horizontal Op along that buffer; both inner loops run over contiguous floats.
-template <class Op>
-void filter_square(const cv::Mat& src, cv::Mat& dst, int size, int threads) {
+// column[x] = Op over the rows y0..y1 of src at column x. With a compile-time count of rows
+// (kRows > 0, the window inside the image) the loop over the rows unrolls and x vectorises with
+// the running value in a register; kRows = 0 is the general loop for windows clipped by a border.
+template <class Op, int kRows>
+void vertical(const cv::Mat& src, int y0, int y1, float* column) {
   const Op op;
-  const int rows = src.rows, cols = src.cols, radius = size / 2;
+  const int cols = src.cols;
+  if constexpr (kRows > 0) {
+    const float* in[kRows];
+    for (int k = 0; k < kRows; ++k) in[k] = src.ptr<float>(y0 + k);
+    for (int x = 0; x < cols; ++x) {
+      float v = in[0][x];
+      for (int k = 1; k < kRows; ++k) v = op(v, in[k][x]);
+      column[x] = v;
+    }
+  } else {
+    std::copy_n(src.ptr<float>(y0), cols, column);
+    for (int yy = y0 + 1; yy <= y1; ++yy) {
+      const float* in = src.ptr<float>(yy);
+      for (int x = 0; x < cols; ++x) column[x] = op(column[x], in[x]);
+    }
+  }
+}
+
+// out[x] = Op over padded[x .. x + 2 radius]: padded holds the row with `radius` identity
+// elements on each side, so the border pixels' windows need no clipping (an identity element
+// changes nothing, which is what "pixels outside the image are ignored" means).
+// kRadius > 0 unrolls the window as vertical does; kRadius = 0 makes a pass over the row per
+// window element instead, which vectorises whatever the radius.
+template <class Op, int kRadius>
+void horizontal(const float* padded, int cols, int radius, float* out) {
+  const Op op;
+  if constexpr (kRadius > 0) {
+    for (int x = 0; x < cols; ++x) {
+      float v = padded[x];
+      for (int j = 1; j <= 2 * kRadius; ++j) v = op(v, padded[x + j]);
+      out[x] = v;
+    }
+  } else {
+    std::copy_n(padded, cols, out);
+    for (int j = 1; j <= 2 * radius; ++j) {
+      for (int x = 0; x < cols; ++x) out[x] = op(out[x], padded[x + j]);
+    }
+  }
+}
+
+// dst = Op over the size x size square around each pixel of src (src and dst distinct), pixels
+// outside the image ignored. Separable: the vertical Op of the window's rows into a padded row
+// buffer, then the horizontal Op along it. kRadius > 0 fixes the radius at compile time (the
+// sizes the trackers use), which lets both passes keep the running value in registers rather
+// than make a pass over the row buffer per window row (benchmarks/cpp/morphology_micro.cpp);
+// kRadius = 0 serves any radius.
+template <class Op, int kRadius>
+void filter_square(const cv::Mat& src, cv::Mat& dst, int radius, int threads) {
+  const int rows = src.rows, cols = src.cols;
   detail::for_rows(rows, threads, [&](int begin, int end) {
-    std::vector<float> column(static_cast<std::size_t>(cols));
+    std::vector<float> padded(static_cast<std::size_t>(cols + 2 * radius), Op::identity());
+    float* column = padded.data() + radius;
     for (int y = begin; y < end; ++y) {
       const int y0 = std::max(0, y - radius), y1 = std::min(rows - 1, y + radius);
-      std::copy_n(src.ptr<float>(y0), cols, column.data());
-      for (int yy = y0 + 1; yy <= y1; ++yy) {
-        const float* in = src.ptr<float>(yy);
-        for (int x = 0; x < cols; ++x) column[x] = op(column[x], in[x]);
+      if (kRadius > 0 && y1 - y0 == 2 * kRadius) {
+        vertical<Op, 2 * kRadius + 1>(src, y0, y1, column);
+      } else {
+        vertical<Op, 0>(src, y0, y1, column);
       }
-      float* out = dst.ptr<float>(y);
-      // Interior: the whole window is inside the row.
-      const int inner_begin = std::min(radius, cols), inner_end = std::max(inner_begin, cols - radius);
-      for (int x = inner_begin; x < inner_end; ++x) out[x] = column[x - radius];
-      for (int j = 1; j <= 2 * radius; ++j) {
-        for (int x = inner_begin; x < inner_end; ++x) out[x] = op(out[x], column[x - radius + j]);
-      }
-      // Borders: the window is clipped to the row.
-      for (int x = 0; x < cols; ++x) {
-        if (x >= inner_begin && x < inner_end) x = inner_end;
-        if (x >= cols) break;
-        const int x0 = std::max(0, x - radius), x1 = std::min(cols - 1, x + radius);
-        float v = column[x0];
-        for (int xx = x0 + 1; xx <= x1; ++xx) v = op(v, column[xx]);
-        out[x] = v;
-      }
+      horizontal<Op, kRadius>(padded.data(), cols, radius, dst.ptr<float>(y));
     }
   });
+}
+
+// filter_square with the radius fixed at compile time where a tracker's closing uses it.
+template <class Op>
+void filter_square(const cv::Mat& src, cv::Mat& dst, int size, int threads) {
+  const int radius = size / 2;
+  switch (radius) {
+    case 1: return filter_square<Op, 1>(src, dst, radius, threads);
+    case 2: return filter_square<Op, 2>(src, dst, radius, threads);
+    case 3: return filter_square<Op, 3>(src, dst, radius, threads);
+    case 4: return filter_square<Op, 4>(src, dst, radius, threads);
+    case 5: return filter_square<Op, 5>(src, dst, radius, threads);
+    default: return filter_square<Op, 0>(src, dst, radius, threads);
+  }
 }
 
 }  // namespace

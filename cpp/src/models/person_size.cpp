@@ -84,7 +84,7 @@ void ForegroundSizeEstimator::observe(const cv::Mat& y, float threshold) {
     throw InvalidArgument("y must be a non-empty single-channel float32 image");
   }
   cv::compare(y, threshold, mask_, cv::CMP_LT);
-  const int n = image::connected_components(mask_, labels_, stats_);
+  const int n = image::connected_components(mask_, stats_);
   if (decay_ < 1.0) {
     for (double& a : area_by_height_) a *= decay_;
     for (double& c : count_) c *= decay_;

@@ -71,18 +71,6 @@ TbdLikelihood::TbdLikelihood(const TbdLikelihoodParams& params) : params_(params
   log_zeta_f_ = -std::log(params_.delta_f) - std::log(-std::expm1(-1.0 / params_.delta_f));
 }
 
-image::Rect box_to_rect(float x, float y, float w, float h) {
-  // lround on floats that may be huge: clamp first so the int conversion is defined; the
-  // integral image clips to the image anyway.
-  auto px = [](float v) {
-    const float c = std::fmin(std::fmax(v, -1e8f), 1e8f);
-    return static_cast<int>(std::lround(c));
-  };
-  const int x0 = px(x);
-  const int y0 = px(y);
-  return {x0, y0, px(x + w) - x0, px(y + h) - y0};
-}
-
 void TbdLikelihood::set_image(const cv::Mat& y) {
   if (y.empty()) throw InvalidArgument("y is empty");
   if (y.type() != CV_32FC1) {

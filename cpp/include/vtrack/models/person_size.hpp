@@ -108,7 +108,7 @@ class ForegroundSizeEstimator {
   int rows_ = 0;  // image height of the last frame observed (bands are fractions of it)
   double weight_ = 0.0;
   long long frames_ = 0;
-  cv::Mat mask_, labels_, stats_;
+  cv::Mat mask_, stats_;
 };
 
 }  // namespace vtrack::models

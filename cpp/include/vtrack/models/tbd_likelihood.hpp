@@ -28,6 +28,7 @@
 // Before the sums, y may be morphologically closed (dilation then erosion of y, i.e. erosion then
 // dilation of the foreground 1 - y, as Section 3.2 says): this removes foreground specks smaller
 // than the structuring element, which would otherwise lower ybar_B (eq. 14) and feed births.
+#include <cmath>
 #include <vector>
 
 #include <Eigen/Core>
@@ -179,6 +180,19 @@ class TbdLikelihood {
 };
 
 // Pixel rectangle of a float box: columns [round(x), round(x + w)), rows likewise (not clipped).
-image::Rect box_to_rect(float x, float y, float w, float h);
+// Inline, with comparisons rather than std::fmin / std::fmax: it runs once per particle and box,
+// and without -ffinite-math-only GCC calls libm for fmin / fmax (which cost the MB pipeline more
+// than the rest of the likelihood together). NaN clamps to -1e8 exactly as fmax then fmin did.
+inline image::Rect box_to_rect(float x, float y, float w, float h) {
+  // lround on floats that may be huge: clamp first so the int conversion is defined; the
+  // integral image clips to the image anyway.
+  auto px = [](float v) {
+    const float c = v > -1e8f ? (v < 1e8f ? v : 1e8f) : -1e8f;
+    return static_cast<int>(std::lround(c));
+  };
+  const int x0 = px(x);
+  const int y0 = px(y);
+  return {x0, y0, px(x + w) - x0, px(y + h) - y0};
+}
 
 }  // namespace vtrack::models
