@@ -83,6 +83,22 @@ closing at all: MOG2 / KNN at a high threshold give whole silhouettes, and SORT 
 bridges the gaps -- the untuned pipeline (MOG2 defaults, close 15, SORT's reference defaults) was
 at 0.306 / 0.326.
 
+The re-clustering SIR after its third pass (2026-11-25; association at the predicted estimates,
+and the sir pipeline's KDE with update_static, which takes the start-up ghosts into the stack),
+seed 0, MOTA / IDF1 / HOTA on all / 1-397 / 398-795:
+768 x 576 (`--variants 768x576 --methods "vtrack SIR,MOG2 + ByteTrack,KNN + SORT"`, one run)
+0.636 / 0.489 / 0.379, 0.590 / 0.553 / 0.400, 0.681 / 0.500 / 0.395 against KNN + SORT 0.597 /
+0.546 / 0.425 and MOG2 + ByteTrack 0.528 / 0.567 / 0.410: MOTA above every baseline's, IDF1 still
+below MOG2 + ByteTrack's and KNN + SORT's. 0.5x (`--variants 0.5x,1.5x --methods "vtrack SIR"`)
+0.582 / 0.409 / 0.338 (1-397 0.486 / 0.417, 398-795 0.676 / 0.499), 1.5x 0.624 / 0.502 / 0.368
+(0.546 / 0.545, 0.699 / 0.515). `vtrack track vtest.avi --method sir --set threads=1` pinned to
+one core: 8.1 s CPU for 795 frames (16 s wall on the loaded machine). Cached-foreground protocol
+(benchmarks/sir_tuning.py, seeds 0-4, calibration fitted on 1-397), MOTA / IDF1: predicted
+association alone 1-397 0.527 / 0.520, 398-795 0.689 / 0.530, all 0.609 / 0.493; with
+update_static 0.580 / 0.551, 0.693 / 0.482, 0.637 / 0.481 (FP on 1-397 644 -> 535; update_static acts only while the
+stack fills, frames 0-90, so the 398-795 IDF1 change is mostly the runs' divergence: settings
+that leave 398-795 alone moved its IDF1 by up to 0.05 in these runs).
+
 The re-clustering SIR (issue 12 part 1), measured again 2026-11-24 23:25 after its second tuning
 pass (size_by_row, relabel_overlap 0.1; the table at the end of this paragraph's tuning notes):
 `vtrack track vtest.avi --method sir --set threads=1 --seed S` pinned to one core with taskset,

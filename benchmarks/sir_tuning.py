@@ -1,6 +1,6 @@
 """The re-clustering SIR's tuning protocol on PETS09-S2L1 (benchmarks/pets09.py's docstring, the
-SIR paragraph): the KDE foreground (vtrack.KdeBackground with its defaults, as the `sir`
-pipeline runs it) of all 795 frames computed once and cached (~/.cache/vtrack/sir-foreground-
+SIR paragraph): the KDE foreground (vtrack.KdeBackground with its defaults and update_static on,
+as the `sir` pipeline runs it; --background update_static=false turns it off) of all 795 frames computed once and cached (~/.cache/vtrack/sir-foreground-
 768x576.npy, bit-packed masks y < 0.5, which is all the tracker reads), the tracker run on the
 cached masks with tracker seeds 0-2, each run's uncalibrated boxes (box_scale 1, offsets 0)
 calibrated by benchmarks/_foreground.py's fit on frames 1-397 (the MB protocol), and MOTA, IDF1,
@@ -105,7 +105,8 @@ def main(argv=None) -> int:
         print("sir_tuning: video or ground truth missing; skipped")
         return 0
     params = {k: parse_value(v) for k, v in (s.split("=", 1) for s in args.set)}
-    background = {k: parse_value(v) for k, v in (s.split("=", 1) for s in args.background)}
+    background = {"update_static": True,  # the sir pipeline's background (apps/pipeline.hpp)
+                  **{k: parse_value(v) for k, v in (s.split("=", 1) for s in args.background)}}
     masks = foreground(video, background)
     gt = read_mot(gt_path)
     halves = {"1-397": (1, 397)}

@@ -83,7 +83,9 @@ morphologically close y (0 = off). `threads`: 0 = OpenCV's default, 1 = single t
 result does not depend on it. `update_threshold` > 0 turns on the selective update (beyond the
 paper): pixels of a sample frame with y below it repeat the newest sample instead, so people
 leave no ghosts (0 = the paper's stack); a pixel is skipped on at most `update_max_skips`
-consecutive sample frames. `illumination_compensation` scales the frame's intensity by the ratio
+consecutive sample frames; with `update_static`, while the stack fills, a foreground pixel
+unchanged since the previous sample frame is taken (start-up ghosts of people in the first
+sample; on in track_video's sir pipeline). `illumination_compensation` scales the frame's intensity by the ratio
 of mean intensities before comparing it with each sample (a global light change cancels; off =
 eq. 10 as printed). Not safe to share one model between threads.
 )doc");

@@ -88,18 +88,20 @@ TEST(KdeBackground, ValuesMatchEquationTenOnTheSchedule) {
   }
 }
 
+// A 16 x 12 frame of background colour A, with person B in the square (4, 3, 5, 4) if `person`.
+// A and B are far apart in rgI, so each kernel between them is 0 (to 1e-30).
+static cv::Mat square_scene(bool person) {
+  const cv::Vec3b a(50, 100, 150), b(200, 30, 60);
+  cv::Mat f(12, 16, CV_8UC3, cv::Scalar(a[0], a[1], a[2]));
+  if (person) f(cv::Rect(4, 3, 5, 4)).setTo(cv::Scalar(b[0], b[1], b[2]));
+  return f;
+}
+
 // Selective update (beyond the paper): a person present on one sample frame leaves no ghost, and
 // one present on every sample frame is absorbed after update_max_skips skips. Background A and
 // person B are far apart in rgI, so each kernel is 0 or 1 (to 1e-30) and y inside the square is
 // the fraction of samples equal to the current pixel.
 TEST(KdeBackground, SelectiveUpdateSkipsForegroundPixelsAtMostMaxSkipsTimes) {
-  const cv::Vec3b a(50, 100, 150), b(200, 30, 60);
-  const cv::Rect square(4, 3, 5, 4);
-  auto frame = [&](bool person) {
-    cv::Mat f(12, 16, CV_8UC3, cv::Scalar(a[0], a[1], a[2]));
-    if (person) f(square).setTo(cv::Scalar(b[0], b[1], b[2]));
-    return f;
-  };
   auto at = [](const cv::Mat& y) { return double(y.at<float>(5, 6)); };  // inside the square
   KdeBackgroundParams p = no_closing(4, 2);
   // Ghost: the person stands in the square on sample frame 2 only.
@@ -107,12 +109,12 @@ TEST(KdeBackground, SelectiveUpdateSkipsForegroundPixelsAtMostMaxSkipsTimes) {
     p.update_threshold = threshold;
     KdeBackground model(p);
     cv::Mat y;
-    model.apply(frame(false), y);  // frame 0: sample
-    model.apply(frame(false), y);
-    model.apply(frame(true), y);   // frame 2: sample
+    model.apply(square_scene(false), y);  // frame 0: sample
+    model.apply(square_scene(false), y);
+    model.apply(square_scene(true), y);   // frame 2: sample
     if (threshold > 0) EXPECT_NEAR(at(y), 0.0, 1e-6);  // y from the stack before the sample
     else EXPECT_NEAR(at(y), 0.5, 1e-6);                // eq. (10): the l = 0 term is frame 2
-    model.apply(frame(false), y);  // frame 3: the person has gone
+    model.apply(square_scene(false), y);  // frame 3: the person has gone
     EXPECT_NEAR(at(y), threshold > 0 ? 1.0 : 0.5, 1e-6) << threshold;  // ghost only without
     EXPECT_NEAR(y.at<float>(0, 0), 1.0, 1e-6);
   }
@@ -123,9 +125,39 @@ TEST(KdeBackground, SelectiveUpdateSkipsForegroundPixelsAtMostMaxSkipsTimes) {
   cv::Mat y;
   const double expected[] = {1, 1, 0, 0, 0, 0, 0, 0.25, 0.25, 0.5};  // frames 0..9
   for (int k = 0; k < 10; ++k) {
-    model.apply(frame(k >= 2), y);
+    model.apply(square_scene(k >= 2), y);
     EXPECT_NEAR(at(y), expected[k], 1e-6) << "frame " << k;
   }
+}
+
+// update_static: a person in the first sample (stored whole) who leaves at frame 1 uncovers
+// background A, which stays unchanged from sample frame 2 on. Without it the uncovered pixels are
+// skipped twice (max_skips 2) and the ghost lasts to frame 8; with it they are taken from sample
+// frame 4 on (the same as on sample frame 2), so y rises two sample periods earlier. Once the
+// stack is full the rule is off: a person who then stands still is skipped as before. Kernels
+// are 0 or 1 as above; y inside the square is the fraction of samples equal to A.
+TEST(KdeBackground, UpdateStaticTakesStartUpGhostsIntoTheStackWhileItFills) {
+  KdeBackgroundParams p = no_closing(4, 2);
+  p.update_threshold = 0.5;
+  p.update_max_skips = 2;
+  const double off[] = {1, 0, 0, 0, 0, 0, 0, 0.25, 0.25, 0.5};
+  const double on[] = {1, 0, 0, 0, 0, 1.0 / 3, 1.0 / 3, 0.5, 0.5, 0.75};
+  for (const bool update_static : {false, true}) {
+    p.update_static = update_static;
+    KdeBackground model(p);
+    cv::Mat y;
+    for (int k = 0; k < 10; ++k) {
+      model.apply(square_scene(k == 0), y);
+      EXPECT_NEAR(y.at<float>(5, 6), update_static ? on[k] : off[k], 1e-6)
+          << "frame " << k << " update_static " << update_static;
+    }
+  }
+  // The stack is full (frames 2 (a repeat of B), 4, 6, 8): a person arriving at frame 10 and
+  // standing still is skipped on sample frames 10 and 12, not taken as static.
+  KdeBackground model(p);
+  cv::Mat y;
+  for (int k = 0; k < 14; ++k) model.apply(square_scene(k == 0 || k >= 10), y);
+  EXPECT_NEAR(y.at<float>(5, 6), 0.0, 1e-6);
 }
 
 // Illumination compensation: a frame that is the sample under 1.3 x the light has the same r, g

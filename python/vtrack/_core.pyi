@@ -89,6 +89,7 @@ class KdeBackground:
         threads: int = 0,
         update_threshold: float = 0.5,
         update_max_skips: int = 3,
+        update_static: bool = False,
         illumination_compensation: bool = False,
     ) -> None: ...
     def apply(self, frame: npt.NDArray[np.uint8]) -> npt.NDArray[np.float32]: ...

@@ -4,7 +4,7 @@ parameters give the same rows.
 - :func:`track_video`: video (or image folder) -> background model or detector -> tracker ->
   MOTChallenge rows. ``method="mb"``: the KDE background model and the multi-Bernoulli
   track-before-detect tracker (config sections ``background``, ``tracker``); ``method="sir"``:
-  the same background model and the re-clustering SIR of particle-filters-human-vehicle §2
+  the same background model (with ``update_static`` on) and the re-clustering SIR of particle-filters-human-vehicle §2
   (``background``, ``tracker``: ``ReclusteringSirTracker.default_params()``); ``method="glmb"``
   with ``detector="hog"``: OpenCV's HOG people detector and the box GLMB tracker (sections
   ``detector``, ``tracker``).

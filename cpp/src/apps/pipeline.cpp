@@ -42,7 +42,7 @@ class MbFrameTracker : public FrameTracker {
 class SirFrameTracker : public FrameTracker {
  public:
   SirFrameTracker(const PipelineParams& p, int width, int height)
-      : background_(p.background), tracker_(width, height, p.sir) {}
+      : background_(p.sir_background), tracker_(width, height, p.sir) {}
   const filters::Tracks& step(const cv::Mat& frame) override {
     background_.apply(frame, y_);
     return tracker_.step(y_);
@@ -115,10 +115,10 @@ const std::vector<Method>& methods() {
        }},
       {"sir",
        {""},
-       {section("background", &PipelineParams::background),
+       {section("background", &PipelineParams::sir_background),
         section("tracker", &PipelineParams::sir)},
        [](const PipelineParams& p) {
-         image::validate(p.background);
+         image::validate(p.sir_background);
          filters::validate(p.sir);
        },
        [](const PipelineParams& p, int w, int h) -> std::unique_ptr<FrameTracker> {

@@ -243,6 +243,7 @@ const Tracks& ReclusteringSir::step(const cv::Mat& y) {
     initialise();
   } else {
     predict();
+    update_estimates();  // the predicted estimates: association sees where people will be
     associate();
     weigh();
     update_estimates();

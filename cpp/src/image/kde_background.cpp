@@ -73,6 +73,7 @@ const core::ParameterTable<KdeBackgroundParams>& KdeBackgroundParams::table() {
                                 .add("threads", &P::threads)
                                 .add("update_threshold", &P::update_threshold)
                                 .add("update_max_skips", &P::update_max_skips)
+                                .add("update_static", &P::update_static)
                                 .add("illumination_compensation", &P::illumination_compensation);
   return table;
 }
@@ -124,6 +125,7 @@ void KdeBackground::reset() {
   count_ = 0;
   next_slot_ = 0;
   skips_.release();
+  last_sample_frame_.release();
 }
 
 std::vector<long long> KdeBackground::sample_frames() const {
@@ -202,19 +204,44 @@ void KdeBackground::apply(const cv::Mat& bgr, cv::Mat& y) {
     const float threshold = static_cast<float>(params_.update_threshold);
     const auto max_skips = static_cast<unsigned char>(params_.update_max_skips);
     keep_.create(size_, CV_8UC1);
+    // Only while the stack fills: the first sample is stored whole, people included.
+    const bool filling = count_ < params_.n_samples;
+    const bool check_static = params_.update_static && filling && !last_sample_frame_.empty();
     for (int r = 0; r < size_.height; ++r) {
       const float* yr = y.ptr<float>(r);
       unsigned char* sr = skips_.ptr<unsigned char>(r);
       unsigned char* kr = keep_.ptr<unsigned char>(r);
+      const unsigned char* now = bgr.ptr<unsigned char>(r);
+      const unsigned char* before = check_static ? last_sample_frame_.ptr<unsigned char>(r) : nullptr;
       for (int c = 0; c < size_.width; ++c) {
-        const bool foreground = yr[c] < threshold;
+        const bool foreground =
+            yr[c] < threshold &&
+            !(check_static && pixel_kernel(now + 3 * c, before + 3 * c) >= threshold);
         kr[c] = (foreground && sr[c] < max_skips) ? 255 : 0;
         sr[c] = foreground ? static_cast<unsigned char>(std::min(sr[c] + 1, 255)) : 0;
       }
     }
     store_sample(bgr, keep_);
   }
+  if (sample && params_.update_static) {
+    if (count_ < params_.n_samples) {
+      bgr.copyTo(last_sample_frame_);
+    } else {
+      last_sample_frame_.release();
+    }
+  }
   ++frame_index_;
+}
+
+float KdeBackground::pixel_kernel(const unsigned char* a, const unsigned char* b) const {
+  const auto& sigma = params_.bandwidth;
+  float ra, ga, sa, rb, gb, sb;
+  chromaticity(a[0], a[1], a[2], ra, ga, sa);
+  chromaticity(b[0], b[1], b[2], rb, gb, sb);
+  const float dr = ra - rb, dg = ga - gb, ds = sa - sb;
+  return exp_neg(dr * dr * static_cast<float>(0.5 / (sigma[0] * sigma[0])) +
+                 dg * dg * static_cast<float>(0.5 / (sigma[1] * sigma[1])) +
+                 ds * ds * static_cast<float>(0.5 / (sigma[2] * sigma[2] * 765.0 * 765.0)));
 }
 
 // Eq. (10) for every pixel, row by row. Per row, the current frame's r, g and S are computed

@@ -110,6 +110,16 @@ struct KdeBackgroundParams {
   // identity; frames 398-795: 0.385 / 0.383 without, 0.495 / 0.447 with it (1 skip 0.452 / 0.425).
   double update_threshold = 0.5;
   int update_max_skips = 3;
+  // Selective update, static pixels (beyond the paper): with this on, a foreground pixel whose
+  // colour has not changed since the previous sample frame (the frame's own rgI kernel against
+  // that frame's pixel, eq. (10) with one term, is >= update_threshold) is taken from the frame
+  // instead of skipped. A person walking moves out of their own pixels within a sample period;
+  // what stays foreground and unchanged is a "ghost": the background uncovered where someone
+  // stood in the first sample (a video that starts with people in view), which the skips would
+  // otherwise keep out of the stack for update_max_skips periods (~70 frames on PETS09-S2L1).
+  // Off by default (the multi-Bernoulli tracker's KDE was tuned without it); the sir pipeline
+  // turns it on (apps/pipeline.hpp, sir_background_defaults).
+  bool update_static = false;
   // Global illumination compensation (beyond the paper): chromaticity r, g is invariant to a
   // global gain of the light, but I is not, and eq. (10)'s intensity kernel (sigma_I = 0.06) sees
   // a few per cent of gain as foreground everywhere. With this on, the current frame's intensity
@@ -169,6 +179,8 @@ class KdeBackground {
   // sample's pixel is repeated instead (selective update).
   void store_sample(const cv::Mat& bgr, const cv::Mat& keep = cv::Mat());
   void evaluate(const cv::Mat& bgr, cv::Mat& y) const;
+  // Eq. (10)'s kernel of one pixel (B, G, R) against another, without the mean over samples.
+  float pixel_kernel(const unsigned char* a, const unsigned char* b) const;
   std::size_t plane_offset(int slot, int channel) const;
 
   KdeBackgroundParams params_;
@@ -185,6 +197,7 @@ class KdeBackground {
   cv::Mat closing_workspace_;  // the closing's intermediate dilation
   cv::Mat keep_;               // selective update: pixels not taken from the sample frame
   cv::Mat skips_;              // selective update: consecutive sample frames each pixel was skipped
+  cv::Mat last_sample_frame_;  // update_static: the previous sample frame as read (BGR)
 };
 
 // Binary foreground mask of a background image y (CV_32FC1): 255 where y < threshold, 0
