@@ -171,6 +171,57 @@ seeds 0-2, old vs join rule): one better (fewer frames of no single vehicle), on
 worse: receding followers (lane 1 under the gantry drives away from it) never part, the coasting
 track drifted and took a second truck (L 1.02 m, light). A join rule must tell approaching from
 receding pairs and re-acquire after long coasts; left for the next session.
+
+Issue 13, large vehicles never tracked (this session; tuning scenes of seeds 300 and 700 only, 40
+vehicles, `--scene-dir`). Diagnosis, gantry seed 300: its 13.5 m bus (receding from under the
+gantry) got no track at all: in every frame its blob covered half or more of the predicted boxes of
+two or more small tracks (distant vehicles ahead of it, and tracks coasting behind it, which a
+"merge" keeps alive), so the blob was a "merge" and went to no track. Change: only tracks whose
+predicted box is at least merge_min_share (0.2) of the blob's box count as members of a merge; a
+blob whose pixels cover half or more of a smaller track's predicted box is "joined": it continues
+its own track, the small track coasts, and its outline goes to a second estimator used only for a
+vehicle with no clean view. merge_min_share = 0 is the old tracker. Found / light / heavy / MAE W H
+L m / reported (diag of the pipeline on the same rendered scenes):
+  scene (tuning)  old tracker                          share 0.2 alone (joined outlines estimated)  kept (share 0.2 + joined)
+  gantry 300      38/40 29/29 9/9  0.13 0.11 0.77 41   39/40 29/29 9/10 0.18 0.21 0.87 47           39/40 29/29 10/10 0.12 0.11 0.84 43
+  mast_low 300    40/40 30/30 9/10 0.21 0.09 0.96 44   -                                            40/40 30/30 9/10 0.17 0.06 1.12 51
+  mast_low 700    40/40 37/37 3/3  0.24 0.08 0.70 45   -                                            40/40 37/37 3/3  0.26 0.08 0.71 47
+  wide_dist. 700  40/40 37/37 3/3  0.17 0.09 0.35 43   -                                            40/40 37/37 3/3  0.17 0.09 0.34 44
+(gantry 300, old: the bus and a car joined with a truck from its first frame missed; kept: the car
+still missed. mast_low 300: old, an articulated lorry "not fully in view" (its frames all merges);
+kept, that one right and another lorry called light, its track split in four at joins with cars.)
+Tried and dropped: a joined blob's track coasting on its prediction instead of following the blob
+(gantry 300: 56 vehicles reported, mast_low 300: a bus called light); following the blob but not
+taking its lowest point as a ground point (mast_low 300: 7 of 10 heavies, MAE L 1.29 m). Seed 700
+draws few heavies (3 of 40): all right before and after; mast_high and gantry 700 were right with
+the old tracker and were not re-run.
+Held out, once, with these defaults (`--video-only --video-vehicles 40 --video-seed 500 --video-setups
+mast_low gantry side wide_distorted mast_high --scene-dir DIR`; found / light / heavy / MAE W H L m /
+naive 2-D light / heavy at its oracle threshold, same run / last session's figures):
+  mast_low        39/40  93.8 % of 32 / 6 of 7 / 0.33 0.08 0.95  naive 65.6 / 100 %   was 38/40 93.5 % 6 of 7 0.28 0.08 1.05
+  gantry          40/40 100.0 % of 33 / 7 of 7 / 0.16 0.16 0.89  naive 78.8 / 100 %   was 40/40 97.0 % 7 of 7 0.16 0.21 1.00
+  side            39/40 100.0 % of 32 / 7 of 7 / 0.17 0.09 0.32  naive 100 / 100 %    was 39/40 100 % 7 of 7 0.19 0.10 0.35
+  wide_distorted  38/40 100.0 % of 32 / 6 of 6 / 0.19 0.08 0.41  naive 100 / 100 %    was 38/40 100 % 6 of 6 0.18 0.12 0.51
+  mast_high       39/40  96.9 % of 32 / 7 of 7 / 0.23 0.13 0.52  naive 100 / 100 %    was 39/40 96.9 % 7 of 7 0.21 0.11 0.49
+Wrong: mast_low a truck as light, a car and a car with trailer as heavy; mast_high a car as heavy.
+Reported beyond one per vehicle: 1-11 per set-up (mast_low 11: 5 second tracks, 6 tracks over
+several vehicles). Still below the bar: found 95-98 % on four set-ups, light 93.8 % (mast_low) and
+96.9 % (mast_high).
+Seeds 600 and 900, once each, 20 vehicles per set-up (rendering time; `--video-vehicles 20
+--video-seed 600|900`), same columns; no old-tracker run on these scenes:
+  600 mast_low        18/20  92.3 % of 13 / 3 of 5 / 0.44 0.21 1.74  naive 61.5 / 100 %
+  600 gantry          20/20 100.0 % of 15 / 5 of 5 / 0.23 0.41 1.52  naive 73.3 / 100 %
+  600 side            17/20 100.0 % of 12 / 4 of 5 / 0.28 0.16 0.47  naive 100 / 100 %
+  600 wide_distorted  19/20 100.0 % of 14 / 5 of 5 / 0.34 0.36 0.98  naive 78.6 / 100 %
+  600 mast_high       19/20 100.0 % of 14 / 5 of 5 / 0.23 0.26 1.13  naive 100 / 100 %
+  900 mast_low        20/20 100.0 % of 18 / 2 of 2 / 0.21 0.09 0.71  naive 66.7 / 100 %
+  900 gantry          20/20 100.0 % of 18 / 2 of 2 / 0.14 0.13 0.45  naive 72.2 / 100 %
+  900 side            19/20  94.1 % of 17 / 2 of 2 / 0.23 0.16 0.23  naive 100 / 100 %
+  900 wide_distorted  20/20 100.0 % of 18 / 2 of 2 / 0.16 0.09 0.41  naive 83.3 / 100 %
+  900 mast_high       20/20 100.0 % of 18 / 2 of 2 / 0.09 0.12 0.35  naive 100 / 100 %
+Wrong: 600 mast_low a van as heavy, a truck and a bus as light; 600 side a truck as light; 900 side
+a car as heavy. Seed 600 (a quarter heavies) is the hardest draw: mast_low's heavies and found
+on mast_low and side are the gaps; the naive 2-D oracle ties on side and mast_high.
 """
 
 import argparse

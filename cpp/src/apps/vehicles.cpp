@@ -153,6 +153,7 @@ const core::ParameterTable<VehicleBlobParams>& VehicleBlobParams::table() {
                             .add("blob_closing", &P::blob_closing)
                             .add("min_area", &P::min_area)
                             .add("min_overlap", &P::min_overlap)
+                            .add("merge_min_share", &P::merge_min_share)
                             .add("lost_memory", &P::lost_memory)
                             .add("confirm_frames", &P::confirm_frames);
   return t;
@@ -165,6 +166,7 @@ void validate(const VehicleBlobParams& p) {
           "blob_closing", p.blob_closing, "0 (auto), 1 (off) or an odd number up to 255");
   require(p.min_area >= 0, "min_area", p.min_area, ">= 0 (0: auto)");
   require(p.min_overlap > 0.0 && p.min_overlap <= 1.0, "min_overlap", p.min_overlap, "in (0, 1]");
+  require(p.merge_min_share >= 0.0 && p.merge_min_share <= 1.0, "merge_min_share", p.merge_min_share, "in [0, 1]");
   require(p.lost_memory >= 0 && p.lost_memory <= 1000, "lost_memory", p.lost_memory, "in [0, 1000]");
   require(p.confirm_frames >= 1 && p.confirm_frames <= 1000, "confirm_frames", p.confirm_frames, "in [1, 1000]");
 }
@@ -218,6 +220,7 @@ std::vector<PipelineSection> vehicle_sections(const VehiclePipelineParams& p) {
 namespace {
 
 struct Blob {
+  int label = 0;  // its component in the labels image
   cv::Rect box;
   std::vector<cv::Point> contour;
   // The silhouette's lowest image point and where it meets the road (metres), when that point is
@@ -268,7 +271,7 @@ std::vector<Blob> find_blobs(const cv::Mat& mask, int min_area, const models::Ca
     for (std::size_t c = 1; c < contours.size(); ++c) {
       if (contours[c].size() > contours[best].size()) best = c;
     }
-    Blob blob{box, std::move(contours[best]), {}, Eigen::Vector2d::Zero(), false};
+    Blob blob{i, box, std::move(contours[best]), {}, Eigen::Vector2d::Zero(), false};
     find_ground(blob, camera, mask.cols, mask.rows);
     out.push_back(std::move(blob));
   }
@@ -366,26 +369,42 @@ void continue_track(BlobTrack& t, const Blob& b, long long frame) {
 struct Assignment {
   std::size_t track = SIZE_MAX;  // index into the tracks
   bool merged = false;           // the blob covers two or more vehicles: no track of its own
+  bool joined = false;           // its pixels also cover a small vehicle's predicted box
 };
+
+// The share of `box` (clipped to the image) whose pixels belong to component `label`.
+double label_share(const cv::Mat& labels, int label, const cv::Rect2d& box) {
+  const cv::Rect r = cv::Rect(box) & cv::Rect(0, 0, labels.cols, labels.rows);
+  if (box.area() <= 0.0 || r.area() <= 0) return 0.0;
+  return cv::countNonZero(labels(r) == label) / box.area();
+}
 
 // One frame of the blob tracker (see the header). Tracks are predicted (predicted()), so
 // that vehicles crossing in the image keep their identities. A blob covering half or more of the
-// predicted boxes of two or more tracks is their merged image: they coast (predicted box kept)
-// and the blob goes to none. Other blobs continue the track whose predicted box they
-// overlap most (greedy in decreasing intersection over union, >= min_overlap) or start one.
-std::vector<Assignment> associate(std::vector<BlobTrack>& tracks, const std::vector<Blob>& blobs, long long frame,
-                                  const VehicleBlobParams& p, const models::Camera& camera, int& next_id) {
+// predicted boxes of two or more tracks, each at least merge_min_share of the blob's box, is their
+// merged image: they coast (predicted box kept) and the blob goes to none. A blob whose pixels
+// cover half or more of a smaller track's predicted box is joined with that vehicle: the blob
+// goes to its track, the small one coasts, and the blob's outline is marked as no one cuboid's.
+// Other blobs continue the track whose predicted box they overlap most (greedy in decreasing intersection over union, >= min_overlap) or start one.
+std::vector<Assignment> associate(std::vector<BlobTrack>& tracks, const std::vector<Blob>& blobs,
+                                  const cv::Mat& labels, long long frame, const VehicleBlobParams& p,
+                                  const models::Camera& camera, int& next_id) {
   std::vector<cv::Rect2d> pred;
   for (const auto& t : tracks) pred.push_back(predicted(t, frame, camera));
   std::vector<Assignment> out(blobs.size());
   std::vector<bool> taken(tracks.size(), false);
   for (std::size_t b = 0; b < blobs.size(); ++b) {
-    std::vector<std::size_t> covered;
+    const cv::Rect2d blob_box(blobs[b].box);
+    std::vector<std::size_t> covered, small;
     for (std::size_t t = 0; t < tracks.size(); ++t) {
-      if ((cv::Rect2d(blobs[b].box) & pred[t]).area() >= 0.5 * pred[t].area()) covered.push_back(t);
+      if ((blob_box & pred[t]).area() < 0.5 * pred[t].area()) continue;
+      if (pred[t].area() >= p.merge_min_share * blob_box.area()) covered.push_back(t);
+      else if (label_share(labels, blobs[b].label, pred[t]) >= 0.5) small.push_back(t);
     }
-    if (covered.size() < 2) continue;
-    out[b].merged = true;
+    out[b].merged = covered.size() >= 2;
+    out[b].joined = !small.empty();
+    if (!out[b].merged) covered.clear();
+    covered.insert(covered.end(), small.begin(), small.end());
     for (std::size_t t : covered) {
       tracks[t].box = pred[t];
       tracks[t].last_frame = frame;
@@ -451,6 +470,10 @@ VehiclePipelineResult measure_vehicles(const std::string& video, const models::C
   VideoSource source(video);
   filters::VehicleDimensionEstimator estimator(camera_for(camera, source.width(), source.height()), std::move(models),
                                                params.estimator);
+  // Outlines joined with a small vehicle's pixels (associate) go to a second estimator, used only
+  // for a vehicle with no clean view: a large vehicle with distant ones in its outline all along.
+  filters::VehicleDimensionEstimator joined_views(estimator.camera(), estimator.prior().params().models,
+                                                  params.estimator);
   image::KdeBackground background(params.background);
   std::unique_ptr<AtomicVideoWriter> writer;
   if (!render.empty()) {
@@ -473,7 +496,7 @@ VehiclePipelineResult measure_vehicles(const std::string& video, const models::C
     image::foreground_mask(y, blob.foreground_threshold, mask);
     if (!kernel.empty()) cv::morphologyEx(mask, mask, cv::MORPH_CLOSE, kernel);
     const std::vector<Blob> blobs = find_blobs(mask, blob.min_area, estimator.camera(), labels);
-    const auto matched = associate(tracks, blobs, k, blob, estimator.camera(), next_id);
+    const auto matched = associate(tracks, blobs, labels, k, blob, estimator.camera(), next_id);
     for (std::size_t b = 0; b < blobs.size(); ++b) {
       if (matched[b].merged) continue;  // two or more vehicles in one blob: no one's silhouette
       const BlobTrack& t = tracks[matched[b].track];
@@ -488,7 +511,7 @@ VehiclePipelineResult measure_vehicles(const std::string& video, const models::C
           poly.col(static_cast<Eigen::Index>(i)) << blobs[b].contour[i].x, blobs[b].contour[i].y;
         }
         try {
-          estimator.update_polygon(t.id, static_cast<int>(k), poly);
+          (matched[b].joined ? joined_views : estimator).update_polygon(t.id, static_cast<int>(k), poly);
         } catch (const InvalidArgument&) {
           // A blob reaching above the horizon (sky, a gantry's structure) is no vehicle on the road.
         }
@@ -521,6 +544,7 @@ VehiclePipelineResult measure_vehicles(const std::string& video, const models::C
     if (n < blob.confirm_frames) continue;
     filters::VehicleEstimate e;
     if (estimator.next_frame(id) > 1) e = estimator.estimate(id);
+    if (!e.valid && joined_views.next_frame(id) > 1) e = joined_views.estimate(id);
     e.vehicle_id = id;
     std::tie(e.first_frame, e.last_frame) = span[id];  // the frames seen, merged ones included
     e.frames_seen = n;

@@ -73,6 +73,14 @@ void write_vehicles_csv(const std::string& path, const std::vector<filters::Vehi
 // lost_memory frames ends. Occlusion: a blob covering half or more of the predicted boxes of two
 // or more tracks is those vehicles merged in the image; its outline is no one cuboid's, so it goes
 // to no track and no estimator, and the tracks coast on their predictions until they separate.
+// Only tracks whose predicted box is at least merge_min_share of the blob's box count as members
+// of a merge: a large near vehicle (a bus, a lorry leaving under a gantry) covers the small boxes
+// of distant vehicles, or of tracks coasting behind it, in most of its frames; counted, they made
+// its blob a "merge" in every frame, so it never got a track of its own and was never found
+// (benchmarks/vehicles.py, gantry seed 300: a 13.5 m bus). Now such a blob goes to the large
+// vehicle's track by overlap and, when its pixels cover half or more of a small track's
+// predicted box ("joined"), the small track coasts and the outline, possibly two vehicles', goes
+// to a second estimator whose answer is used only for a vehicle with no clean view.
 // Vehicles side by side at the same speed for their whole passage stay one blob: one track, the
 // estimator fed a two-vehicle outline (a limitation; benchmarks/vehicles.py counts it). A track
 // matched in fewer than confirm_frames frames is not reported (a flicker of the background).
@@ -87,6 +95,7 @@ struct VehicleBlobParams {
   int blob_closing = 0;               // pixels: 0 = auto (5 at f = 900, odd), 1 = off, else odd
   int min_area = 0;                   // pixels: 0 = auto (150 at f = 900, times (f / 900)^2)
   double min_overlap = 0.2;           // intersection over union to continue a track
+  double merge_min_share = 0.2;       // a merge member's predicted box area / the blob box's (above)
   int lost_memory = 5;                // frames a track may go unmatched (it coasts through merges)
   int confirm_frames = 3;             // matched frames for a track to be a vehicle
 
