@@ -472,7 +472,11 @@ def local_cluster(workers: Optional[int] = None, **kwargs):
     in that config; the other pre-spawn variables are kept), unless this process's environment
     has it -- set by the user, or left there by the nanny of a Dask cluster started earlier in
     this process, which updates os.environ for good. docs/batch.md says how to do the same on a
-    cluster of one's own. `kwargs` go to LocalCluster."""
+    cluster of one's own. Dask's statistical profiler is off in these workers
+    (``distributed.worker.profile.enabled``): it samples the task thread's Python stack every 10
+    ms, and a tracking task's stack is one C++ call, so the dashboard's profile page would only
+    ever show track_video (batch.py's docstring has the CPU it costs). `kwargs` go to
+    LocalCluster."""
     import dask  # noqa: PLC0415
     from distributed import LocalCluster  # noqa: PLC0415
 
@@ -481,7 +485,8 @@ def local_cluster(workers: Optional[int] = None, **kwargs):
                    else os.cpu_count())
     environ = dict(dask.config.get("distributed.nanny.pre-spawn-environ", {}))
     environ["MALLOC_TRIM_THRESHOLD_"] = None
-    with dask.config.set({"distributed.nanny.pre-spawn-environ": environ}):
+    with dask.config.set({"distributed.nanny.pre-spawn-environ": environ,
+                          "distributed.worker.profile.enabled": False}):
         return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, **kwargs)
 
 
