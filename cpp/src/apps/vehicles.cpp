@@ -166,7 +166,8 @@ void validate(const VehicleBlobParams& p) {
           "blob_closing", p.blob_closing, "0 (auto), 1 (off) or an odd number up to 255");
   require(p.min_area >= 0, "min_area", p.min_area, ">= 0 (0: auto)");
   require(p.min_overlap > 0.0 && p.min_overlap <= 1.0, "min_overlap", p.min_overlap, "in (0, 1]");
-  require(p.merge_min_share >= 0.0 && p.merge_min_share <= 1.0, "merge_min_share", p.merge_min_share, "in [0, 1]");
+  require(p.merge_min_share >= 0.0 && p.merge_min_share <= 1.0, "merge_min_share",
+          p.merge_min_share, "in [0, 1]");
   require(p.lost_memory >= 0 && p.lost_memory <= 1000, "lost_memory", p.lost_memory, "in [0, 1000]");
   require(p.confirm_frames >= 1 && p.confirm_frames <= 1000, "confirm_frames", p.confirm_frames, "in [1, 1000]");
 }
@@ -385,7 +386,8 @@ double label_share(const cv::Mat& labels, int label, const cv::Rect2d& box) {
 // merged image: they coast (predicted box kept) and the blob goes to none. A blob whose pixels
 // cover half or more of a smaller track's predicted box is joined with that vehicle: the blob
 // goes to its track, the small one coasts, and the blob's outline is marked as no one cuboid's.
-// Other blobs continue the track whose predicted box they overlap most (greedy in decreasing intersection over union, >= min_overlap) or start one.
+// Other blobs continue the track whose predicted box they overlap most (greedy in decreasing
+// intersection over union, >= min_overlap) or start one.
 std::vector<Assignment> associate(std::vector<BlobTrack>& tracks, const std::vector<Blob>& blobs,
                                   const cv::Mat& labels, long long frame, const VehicleBlobParams& p,
                                   const models::Camera& camera, int& next_id) {
