@@ -116,13 +116,8 @@ metres of the depth model's camera, 0 where there is no target or no reading; tr
 undetected are then scored by it (the switching model). Without it a step is detection-only.
 Raises TypeError for a non-numeric dtype and ValueError for a wrong shape or NaN/inf.
 )doc")
-      .def_property_readonly(
-          "tracks",
-          [](const GlmbTracker& t) {
-            ObjectGuard guard(&t);
-            return TrackSet{t.tracks()};
-          },
-          "The tracks reported by the last step.")
+      .def_property_readonly("tracks", last_tracks<GlmbTracker>(),
+                             "The tracks reported by the last step.")
       .def("cardinality_distribution", guarded(&GlmbTracker::cardinality_distribution),
            "P(n targets) for n = 0 .. the largest hypothesis size, a float64 array summing to 1.")
       .def_property_readonly("map_cardinality", guarded(&GlmbTracker::map_cardinality),

@@ -23,6 +23,15 @@ py::array_t<double> detection_rows(const std::vector<apps::Detection>& detection
 
 namespace vtrack::bindings {
 
+// The getter of a tracker's `tracks` property: the last step's tracks as vtrack.Tracks.
+template <class Tracker>
+auto last_tracks() {
+  return [](const Tracker& t) {
+    ObjectGuard guard(&t);
+    return TrackSet{t.tracks()};
+  };
+}
+
 // The surface of the trackers fed background-subtracted images (MultiBernoulliTracker,
 // ReclusteringSirTracker): Tracker(image_size, **params), step(y) -> Tracks, tracks, image_size,
 // default_params() / params. Tracker has Tracker(width, height, Params), step(cv::Mat),
@@ -46,13 +55,8 @@ void def_foreground_tracker(py::class_<Tracker>& cls) {
           py::arg("y"),
           "Process one background-subtracted image y (H x W float32 in [0, 1], H and W as "
           "image_size) and return the reported tracks (vtrack.Tracks).")
-      .def_property_readonly(
-          "tracks",
-          [](const Tracker& f) {
-            ObjectGuard guard(&f);
-            return TrackSet{f.tracks()};
-          },
-          "The tracks returned by the last step.")
+      .def_property_readonly("tracks", last_tracks<Tracker>(),
+                             "The tracks returned by the last step.")
       .def_property_readonly(
           "image_size", [](const Tracker& f) { return py::make_tuple(f.width(), f.height()); });
   def_params<Params>(cls, [](const Tracker& f) { return f.params(); });

@@ -79,10 +79,8 @@ bool PersonHeight::observe(const cv::Mat& y, float threshold, double person_area
   height_ = h;
   if (fit_line_) {
     line_ = estimator_.person_height_line();
-    if (require_well_supported_ && !line_.well_supported()) {
-      line_ = models::PersonHeightLine{};
-      line_.intercept = estimator_.person_height();  // the constant (by_row false)
-    }
+    // A line the bands do not support well is no line: height_ then serves every row.
+    if (require_well_supported_ && !line_.well_supported()) line_.by_row = false;
   }
   return true;
 }

@@ -38,10 +38,9 @@
 namespace vtrack::apps {
 
 // The sir pipeline's background model: the KDE's defaults with update_static on (start-up
-// ghosts of the people in view at frame 0 are taken into the stack once they stop changing;
-// PETS09-S2L1 frames 1-397, tracker seeds 0-4, calibrated MOTA / IDF1 0.527 / 0.520 without,
-// 0.580 / 0.551 with it, false positives 644 -> 535; benchmarks/sir_tuning.py). The mb pipeline
-// keeps the KDE's defaults, on which its own were tuned.
+// ghosts of the people in view at frame 0 are taken into the stack once they stop changing; the
+// measurements are in benchmarks/sir_tuning.py's docstring). The mb pipeline keeps the KDE's
+// defaults, on which its own were tuned.
 inline image::KdeBackgroundParams sir_background_defaults() {
   image::KdeBackgroundParams p;
   p.update_static = true;
