@@ -61,6 +61,22 @@ struct Exponents {
   float r, g, s;
 };
 
+template <class Bandwidth>
+Exponents exponents(const Bandwidth& sigma) {
+  return {static_cast<float>(0.5 / (sigma[0] * sigma[0])),
+          static_cast<float>(0.5 / (sigma[1] * sigma[1])),
+          static_cast<float>(0.5 / (sigma[2] * sigma[2] * 765.0 * 765.0))};
+}
+
+// Eq. (10)'s kernel of one pixel (B, G, R) against another, without the mean over samples.
+float pixel_kernel(const unsigned char* a, const unsigned char* b, const Exponents& k) {
+  float ra, ga, sa, rb, gb, sb;
+  chromaticity(a[0], a[1], a[2], ra, ga, sa);
+  chromaticity(b[0], b[1], b[2], rb, gb, sb);
+  const float dr = ra - rb, dg = ga - gb, ds = sa - sb;
+  return exp_neg(dr * dr * k.r + dg * dg * k.g + ds * ds * k.s);
+}
+
 }  // namespace
 
 const core::ParameterTable<KdeBackgroundParams>& KdeBackgroundParams::table() {
@@ -207,6 +223,7 @@ void KdeBackground::apply(const cv::Mat& bgr, cv::Mat& y) {
     // Only while the stack fills: the first sample is stored whole, people included.
     const bool filling = count_ < params_.n_samples;
     const bool check_static = params_.update_static && filling && !last_sample_frame_.empty();
+    const Exponents k = exponents(params_.bandwidth);
     for (int r = 0; r < size_.height; ++r) {
       const float* yr = y.ptr<float>(r);
       unsigned char* sr = skips_.ptr<unsigned char>(r);
@@ -216,7 +233,7 @@ void KdeBackground::apply(const cv::Mat& bgr, cv::Mat& y) {
       for (int c = 0; c < size_.width; ++c) {
         const bool foreground =
             yr[c] < threshold &&
-            !(check_static && pixel_kernel(now + 3 * c, before + 3 * c) >= threshold);
+            !(check_static && pixel_kernel(now + 3 * c, before + 3 * c, k) >= threshold);
         kr[c] = (foreground && sr[c] < max_skips) ? 255 : 0;
         sr[c] = foreground ? static_cast<unsigned char>(std::min(sr[c] + 1, 255)) : 0;
       }
@@ -233,17 +250,6 @@ void KdeBackground::apply(const cv::Mat& bgr, cv::Mat& y) {
   ++frame_index_;
 }
 
-float KdeBackground::pixel_kernel(const unsigned char* a, const unsigned char* b) const {
-  const auto& sigma = params_.bandwidth;
-  float ra, ga, sa, rb, gb, sb;
-  chromaticity(a[0], a[1], a[2], ra, ga, sa);
-  chromaticity(b[0], b[1], b[2], rb, gb, sb);
-  const float dr = ra - rb, dg = ga - gb, ds = sa - sb;
-  return exp_neg(dr * dr * static_cast<float>(0.5 / (sigma[0] * sigma[0])) +
-                 dg * dg * static_cast<float>(0.5 / (sigma[1] * sigma[1])) +
-                 ds * ds * static_cast<float>(0.5 / (sigma[2] * sigma[2] * 765.0 * 765.0)));
-}
-
 // Eq. (10) for every pixel, row by row. Per row, the current frame's r, g and S are computed
 // once; then each sample adds its product of three kernels, exp(-(dr^2/2sr^2 + dg^2/2sg^2 +
 // dI^2/2sI^2)), one exp per sample. The inner loops are over contiguous floats and bytes.
@@ -253,10 +259,7 @@ void KdeBackground::evaluate(const cv::Mat& bgr, cv::Mat& y) const {
     y.setTo(1.0f);
     return;
   }
-  const auto& sigma = params_.bandwidth;
-  const Exponents k{static_cast<float>(0.5 / (sigma[0] * sigma[0])),
-                    static_cast<float>(0.5 / (sigma[1] * sigma[1])),
-                    static_cast<float>(0.5 / (sigma[2] * sigma[2] * 765.0 * 765.0))};
+  const Exponents k = exponents(params_.bandwidth);
   const float inv_n = 1.0f / static_cast<float>(count_);
   const int n = params_.n_samples;
   const int oldest = count_ < n ? 0 : next_slot_;

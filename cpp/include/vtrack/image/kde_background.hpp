@@ -179,8 +179,6 @@ class KdeBackground {
   // sample's pixel is repeated instead (selective update).
   void store_sample(const cv::Mat& bgr, const cv::Mat& keep = cv::Mat());
   void evaluate(const cv::Mat& bgr, cv::Mat& y) const;
-  // Eq. (10)'s kernel of one pixel (B, G, R) against another, without the mean over samples.
-  float pixel_kernel(const unsigned char* a, const unsigned char* b) const;
   std::size_t plane_offset(int slot, int channel) const;
 
   KdeBackgroundParams params_;
