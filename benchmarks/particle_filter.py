@@ -15,6 +15,8 @@ N, and the position RMSE of the weighted-mean estimate against the truth.
 
 Rows:
   vtrack SIR                 vtrack.ParticleFilter, built-in ConstantVelocity + RangeBearingObservation
+  vtrack SIR, float32        the same with dtype="float32" (single-precision states and residuals;
+                             weights, estimates and evidence in double)
   vtrack SIR, Python obs.    the same with the likelihood as a NumPy callback (called once per step)
   vtrack SIR, Python models  motion and likelihood both NumPy callbacks
   NumPy SIR (reference)      a vectorised NumPy SIR written for speed in this file (structured CV
@@ -206,14 +208,15 @@ class NumpyConstantVelocity:
         return particles @ F.T + rng.standard_normal(particles.shape) @ L.T
 
 
-def vtrack_sir(n, zs, seed, moves=0, python_obs=False, python_motion=False):
+def vtrack_sir(n, zs, seed, moves=0, python_obs=False, python_motion=False, dtype="float64"):
     motion = NumpyConstantVelocity() if python_motion else models.ConstantVelocity(
         axes=2, period=T, q=Q_INTENSITY)
     obs = NumpyRangeBearing() if python_obs else models.RangeBearingObservation(
         sigma_range=SIGMA_RANGE, sigma_bearing=SIGMA_BEARING)
     pf = vtrack.ParticleFilter(motion, obs, prior=vtrack.Gaussian(X0, P0), n_particles=n,
                                resampling="systematic", ess_threshold=1.0, seed=seed,
-                               resample_move_steps=moves, move_scale=MOVE_SCALE, threads=1)
+                               resample_move_steps=moves, move_scale=MOVE_SCALE, threads=1,
+                               dtype=dtype)
     est = np.empty((len(zs), 4))
     start = time.perf_counter(), time.process_time()
     for k, z in enumerate(zs):
@@ -373,6 +376,7 @@ def main():
 
     truth, zs = simulate(0)
     sir = [("vtrack SIR", lambda n, z, s: vtrack_sir(n, z, s)),
+           ("vtrack SIR, float32", lambda n, z, s: vtrack_sir(n, z, s, dtype="float32")),
            ("vtrack SIR, Python obs.", lambda n, z, s: vtrack_sir(n, z, s, python_obs=True)),
            ("vtrack SIR, Python models",
             lambda n, z, s: vtrack_sir(n, z, s, python_obs=True, python_motion=True)),
@@ -391,6 +395,8 @@ def main():
     if available("pfilter"):
         sir.append(("pfilter", pfilter_sir))
     moves = [("vtrack resample-move", lambda n, z, s: vtrack_sir(n, z, s, moves=1)),
+             ("vtrack resample-move, float32",
+              lambda n, z, s: vtrack_sir(n, z, s, moves=1, dtype="float32")),
              ("NumPy resample-move", lambda n, z, s: numpy_sir(n, z, s, moves=1))]
     if available("stonesoup"):
         moves.append(("Stone Soup MCMC regulariser", lambda n, z, s: stonesoup_sir(n, z, s, mcmc=True)))

@@ -131,6 +131,33 @@ def test_same_seed_same_particles_and_threads_do_not_matter():
         make_pf(-1, n=10)
 
 
+def test_float32_states_match_kalman_and_draw_the_float64_numbers():
+    zs = simulate(10)
+    pf = assert_matches_kalman(lambda seed: make_pf(seed, n=4000, dtype="float32"), zs,
+                               what="float32")
+    assert pf.particles.dtype == np.float32 and pf.weights.dtype == np.float64
+    # Same seed: the same random draws, so the first estimate agrees to float round-off.
+    single, double = make_pf(3, n=3000, dtype=np.float32), make_pf(3, n=3000)
+    assert np.allclose(single.particles, double.particles, rtol=0, atol=1e-5)
+    assert np.allclose(single.step(zs[0]), double.step(zs[0]), rtol=0, atol=1e-5)
+    # Range-bearing too (the benchmark's problem): it filters as well as float64.
+    truth, rb = range_bearing_problem()
+    prior = vtrack.Gaussian([120, 1, 60, 1.5], np.diag([25.0, 1, 25, 1]))
+    est = {}
+    for dtype in ("float32", "float64"):
+        f = vtrack.ParticleFilter(models.ConstantVelocity(q=0.25), models.RangeBearingObservation(),
+                                  prior=prior, n_particles=5000, seed=4, dtype=dtype)
+        est[dtype] = np.array([f.step(z) for z in rb])
+    errors = {d: np.sqrt(np.mean((e[:, 0] - truth[:, 0]) ** 2 + (e[:, 2] - truth[:, 2]) ** 2))
+              for d, e in est.items()}
+    assert errors["float32"] < 5.0 and abs(errors["float32"] - errors["float64"]) < 0.5
+    with pytest.raises(TypeError, match="float32.*built-in"):
+        vtrack.ParticleFilter(models.ConstantVelocity(q=0.25), NumpyRangeBearing(), prior=prior,
+                              dtype="float32")
+    with pytest.raises(ValueError, match="dtype must be float64 or float32, got int32"):
+        make_pf(dtype="int32")
+
+
 # ---- models ---------------------------------------------------------------------------------
 
 def test_motion_models_are_the_papers_matrices():

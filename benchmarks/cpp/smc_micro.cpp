@@ -29,6 +29,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <ctime>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -166,10 +167,15 @@ void floor_and_sir(Eigen::Index n) {
   smc::Sir<models::ConstantVelocity, models::RangeBearingObservation> sir(motion, observation, prior, params);
   Eigen::VectorXd z(2);
   z << 134.0, 0.46;
+  smc::Sir<models::ConstantVelocity, models::RangeBearingObservation, smc::Bootstrap, float>
+      sir_float(motion, observation, prior, params);
   const double t_step = ns_per([&] { sir.step(z); }, d, 51);
-  std::printf("SIR step (range-bearing, resampling every step): %.2f ns per particle = %.0f M "
-              "particle-steps/s; floor / step = %.0f%%\n",
-              t_step, 1e3 / t_step, 100.0 * (t_normals + t_exp) / t_step);
+  const double t_float = ns_per([&] { sir_float.step(z); }, d, 51);
+  for (const auto& [name, t] : {std::pair{"double", t_step}, std::pair{"float", t_float}}) {
+    std::printf("SIR step, %s states (range-bearing, resampling every step): %.2f ns per particle "
+                "= %.0f M particle-steps/s; floor / step = %.0f%%\n",
+                name, t, 1e3 / t, 100.0 * (t_normals + t_exp) / t);
+  }
 }
 
 }  // namespace

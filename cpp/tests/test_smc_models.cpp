@@ -161,6 +161,17 @@ TEST(SmcModels, RangeBearingLikelihoodIsTheProductOfTwoNormals) {
       const double expected = -std::log(2 * M_PI * 2.0 * 0.05) - 0.5 * (dr * dr / 4.0 + db * db / 0.0025);
       EXPECT_NEAR(out[i], expected, 1e-9 * std::fabs(expected)) << i;
     }
+    // Float states: residuals in float, against the same formula in double on the same (rounded)
+    // states. The error is float rounding of residuals of size |x| / sigma: ~1e-5 relative.
+    const Eigen::MatrixXf xf = x.cast<float>();
+    rb.log_likelihood(StatesView<float>(xf), z, out.data());
+    for (int i = 0; i < 200; ++i) {
+      const double dx = double{xf(i, 0)} - 10.0, dy = double{xf(i, 2)} + 5.0;
+      const double db = std::remainder(std::atan2(dy, dx) - z[1], 2 * M_PI);
+      const double dr = std::hypot(dx, dy) - z[0];
+      const double expected = -std::log(2 * M_PI * 2.0 * 0.05) - 0.5 * (dr * dr / 4.0 + db * db / 0.0025);
+      EXPECT_NEAR(out[i], expected, 2e-5 * (1.0 + std::fabs(expected))) << "float " << i;
+    }
   }
   EXPECT_THROW(rb.check(Eigen::Vector2d(1.0, std::nan(""))), InvalidArgument);
   EXPECT_THROW(rb.check(Eigen::Vector3d(1.0, 1.0, 1.0)), InvalidArgument);

@@ -343,6 +343,45 @@ TEST(SmcSir, ResampleMoveKeepsThePosterior) {
   EXPECT_LT(filter.acceptance_rate(), 0.95);
 }
 
+using FloatCvSir = smc::Sir<models::ConstantVelocity, models::LinearGaussianLikelihood,
+                            smc::Bootstrap, float>;
+
+TEST(SmcSir, FloatStatesMatchTheKalmanFilterWithAndWithoutMoves) {
+  for (const int moves : {0, 1}) {
+    const Scenario s(15 + static_cast<std::uint64_t>(moves));
+    expect_matches_kalman(
+        [&](std::uint64_t seed) {
+          return FloatCvSir(s.motion, models::LinearGaussianLikelihood(s.observation), s.prior(),
+                            params(5000, seed, 0.6, moves));
+        },
+        s.z, kalman(s), 30, "float states, moves " + std::to_string(moves));
+  }
+}
+
+// Float and double filters draw the same random numbers: the prior sample and the first update
+// agree to float round-off (the states are ~10, float's relative precision 6e-8); resampling then
+// takes the same ancestors except where a float-rounded weight moves a particle across a point.
+TEST(SmcSir, FloatStatesDrawTheSameParticlesAsDouble) {
+  const Scenario s(17);
+  const models::LinearGaussianLikelihood obs(s.observation);
+  for (const int threads : {1, 2}) {
+    smc::SirParams p = params(4000, 17);
+    p.threads = threads;
+    CvSir twin(s.motion, obs, s.prior(), p);
+    FloatCvSir filter(s.motion, obs, s.prior(), p);
+    EXPECT_LT((filter.particles().states().cast<double>() - twin.particles().states())
+                  .cwiseAbs().maxCoeff(), 1e-5);
+    const Eigen::VectorXd expected = twin.step(s.z[0]);
+    EXPECT_LT((filter.step(s.z[0]) - expected).cwiseAbs().maxCoeff(), 1e-5);
+    EXPECT_NEAR(filter.log_evidence(), twin.log_evidence(), 1e-5);
+    const Eigen::MatrixXd a = filter.particles().states().cast<double>();
+    const Eigen::MatrixXd& b = twin.particles().states();
+    Eigen::Index same = 0;
+    for (Eigen::Index i = 0; i < a.rows(); ++i) same += (a.row(i) - b.row(i)).cwiseAbs().maxCoeff() < 1e-4;
+    EXPECT_GT(same, a.rows() * 99 / 100) << "threads " << threads;
+  }
+}
+
 TEST(SmcSir, ResampleMoveWorksWithSingularProcessNoise) {
   // The second-order auto-regressive model's copied half has no noise: a state-space random walk
   // could never be accepted there; the moves on eps can. Kalman handles the singular Q.

@@ -64,6 +64,20 @@ TEST(SmcVmath, Atan2MatchesLibmInEveryQuadrant) {
   EXPECT_NEAR(vmath::atan2(-1.0, -1.0), -3 * M_PI / 4, 1e-15);
 }
 
+TEST(SmcVmath, SinglePrecisionAtan2IsAccurateInEveryQuadrant) {
+  Rng rng(5);
+  for (int i = 0; i < 200000; ++i) {
+    const auto y = static_cast<float>(rng.uniform(-10.0, 10.0) * std::exp2(rng.uniform(-20.0, 20.0)));
+    const auto x = static_cast<float>(rng.uniform(-10.0, 10.0) * std::exp2(rng.uniform(-20.0, 20.0)));
+    const double expected = std::atan2(static_cast<double>(y), static_cast<double>(x));
+    EXPECT_NEAR(vmath::atan2(y, x), expected, 3e-7) << y << " " << x;
+  }
+  EXPECT_EQ(vmath::atan2(0.0f, 0.0f), 0.0f);
+  EXPECT_EQ(vmath::atan2(0.0f, 1.0f), 0.0f);
+  EXPECT_NEAR(vmath::atan2(-1.0f, -1.0f), -3 * M_PI / 4, 3e-7);
+  EXPECT_NEAR(vmath::atan2(0.0f, -1.0f), M_PI, 3e-7);
+}
+
 TEST(SmcVmath, ReducedSinCosMatchLibm) {
   for (int i = -1000; i <= 1000; ++i) {
     const double x = M_PI / 4 * i / 1000.0;

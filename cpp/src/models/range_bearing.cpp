@@ -50,6 +50,9 @@ void RangeBearingObservation::log_likelihood(const StatesView<float>& x, const E
   log_likelihood_impl(x, z, out);
 }
 
+// Computed in the states' precision: float states give float residuals (twice the vector width
+// and a shorter atan2), whose error is far below the states' own rounding, then a double
+// log-likelihood.
 template <typename Scalar>
 void RangeBearingObservation::log_likelihood_impl(const StatesView<Scalar>& x,
                                              const Eigen::VectorXd& z, double* out) const {
@@ -57,21 +60,21 @@ void RangeBearingObservation::log_likelihood_impl(const StatesView<Scalar>& x,
   if (n == 0) return;
   const Scalar* px = column(x, params_.x_index);
   const Scalar* py = column(x, params_.y_index);
-  const double sx = params_.sensor_x;
-  const double sy = params_.sensor_y;
-  const double range = z[0];
-  const double c = std::cos(z[1]);
-  const double s = std::sin(z[1]);
-  const double inv_r = 1.0 / params_.sigma_range;
-  const double inv_b = 1.0 / params_.sigma_bearing;
+  const auto sx = static_cast<Scalar>(params_.sensor_x);
+  const auto sy = static_cast<Scalar>(params_.sensor_y);
+  const auto range = static_cast<Scalar>(z[0]);
+  const auto c = static_cast<Scalar>(std::cos(z[1]));
+  const auto s = static_cast<Scalar>(std::sin(z[1]));
+  const auto inv_r = static_cast<Scalar>(1.0 / params_.sigma_range);
+  const auto inv_b = static_cast<Scalar>(1.0 / params_.sigma_bearing);
   const double norm = log_normaliser_;
   for (Eigen::Index i = 0; i < n; ++i) {
-    const double dx = static_cast<double>(px[i]) - sx;
-    const double dy = static_cast<double>(py[i]) - sy;
-    const double dr = (std::sqrt(dx * dx + dy * dy) - range) * inv_r;
+    const Scalar dx = px[i] - sx;
+    const Scalar dy = py[i] - sy;
+    const Scalar dr = (std::sqrt(dx * dx + dy * dy) - range) * inv_r;
     // Bearing of (dx, dy) minus b: the angle of (dx, dy) rotated by -b, in (-pi, pi].
-    const double db = core::vmath::atan2(c * dy - s * dx, c * dx + s * dy) * inv_b;
-    out[i] = norm - 0.5 * (dr * dr + db * db);
+    const Scalar db = core::vmath::atan2(c * dy - s * dx, c * dx + s * dy) * inv_b;
+    out[i] = norm - 0.5 * static_cast<double>(dr * dr + db * db);
   }
 }
 

@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "vtrack/core/errors.hpp"
 #include "vtrack/core/vmath.hpp"
@@ -29,6 +30,35 @@ void WeightUpdate::begin(Eigen::Index n, Eigen::Index d, bool keep_log) {
 
 void WeightUpdate::block(Eigen::Index b, const double* log_w, const double* log_lik,
                          const models::StatesView<double>* states, double uniform_log_w) {
+  if (weigh(b, log_w, log_lik, uniform_log_w) && states && d_ > 0) sum_states(b, *states);
+}
+
+void WeightUpdate::block(Eigen::Index b, const double* log_w, const double* log_lik,
+                         const models::StatesView<float>* states, double uniform_log_w) {
+  if (weigh(b, log_w, log_lik, uniform_log_w) && states && d_ > 0) sum_states(b, *states);
+}
+
+template <typename Scalar>
+void WeightUpdate::sum_states(Eigen::Index b, const models::StatesView<Scalar>& states) {
+  // sum_i e_i x_i while the block's states are in cache (eq. 8 before normalisation).
+  const BlockRange r = block_range(b, n_);
+  const Eigen::Map<const Eigen::VectorXd> e(scaled_.data() + r.begin, r.size());
+  if constexpr (std::is_same_v<Scalar, double>) {
+    block_state_sums_.col(b).noalias() = states.transpose() * e;
+  } else {
+    // Each component widened into a block buffer, then Eigen's vectorised dot (over a cast
+    // expression it stays scalar: 4x slower).
+    alignas(64) double widened[kBlockSize];
+    Eigen::Map<Eigen::VectorXd> column(widened, r.size());
+    for (Eigen::Index c = 0; c < states.cols(); ++c) {
+      column = states.col(c).template cast<double>();
+      block_state_sums_(c, b) = column.dot(e);
+    }
+  }
+}
+
+bool WeightUpdate::weigh(Eigen::Index b, const double* log_w, const double* log_lik,
+                         double uniform_log_w) {
   const BlockRange r = block_range(b, n_);
   const Eigen::Index n = r.size();
   // t in the whole-set array when the log weights are kept, else in a block buffer (in cache).
@@ -52,7 +82,7 @@ void WeightUpdate::block(Eigen::Index b, const double* log_w, const double* log_
     for (Eigen::Index i = 0; i < n; ++i) {
       if (!(t[i] < kInf)) {
         s.invalid = r.begin + i;
-        return;
+        return false;
       }
     }  // (not found: finite values whose sum overflowed; carry on)
   }
@@ -72,10 +102,7 @@ void WeightUpdate::block(Eigen::Index b, const double* log_w, const double* log_
   for (Eigen::Index i = 0; i < n; ++i) e[i] = core::vmath::exp(t[i] - shift);
   s.sum = ev.sum();
   s.sum_sq = ev.square().sum();
-  if (states && d_ > 0) {
-    // sum_i e_i x_i while the block's states are in cache (eq. 8 before normalisation).
-    block_state_sums_.col(b).noalias() = states->transpose() * ev.matrix();
-  }
+  return true;
 }
 
 ReweightResult WeightUpdate::finish() {

@@ -197,4 +197,36 @@ inline void sincos_reduced(float x, float& s, float& c) noexcept {
       z * z * (4.166664568298827e-2f + z * (-1.388731625493765e-3f + z * 2.443315711809948e-5f));
 }
 
+// atan2(y, x) in [-pi, pi] for finite float y, x (absolute error < 3e-7); atan2(0, 0) = 0. The
+// double version's reduction; on [-tan(pi/12), tan(pi/12)] atan's series to t^11 is within
+// 0.268^13 / 13 = 3e-9 of atan, below float's rounding.
+inline float atan2(float y, float x) noexcept {
+  constexpr float kSqrt3 = 1.73205080756887729353f;
+  constexpr float kTanPi12 = 0.26794919243112270647f;
+  constexpr float kPi6 = 0.52359877559829887308f;
+  constexpr float kPi2 = 1.57079632679489661923f;
+  constexpr float kPif = 3.14159265358979323846f;
+  const float ax = x < 0.0f ? -x : x;
+  const float ay = y < 0.0f ? -y : y;
+  const bool swap = ay > ax;
+  const float num = swap ? ax : ay;
+  const float den = swap ? ay : ax;
+  const bool high = num > kTanPi12 * den;
+  const float tn = high ? kSqrt3 * num - den : num;
+  const float td_raw = high ? kSqrt3 * den + num : den;
+  const float td = td_raw == 0.0f ? 1.0f : td_raw;
+  const float t = tn / td;
+  const float z = t * t;
+  float p = -1.0f / 11.0f;
+  p = p * z + 1.0f / 9.0f;
+  p = p * z - 1.0f / 7.0f;
+  p = p * z + 1.0f / 5.0f;
+  p = p * z - 1.0f / 3.0f;
+  float a = t + t * z * p;
+  a = high ? a + kPi6 : a;
+  a = swap ? kPi2 - a : a;
+  a = x < 0.0f ? kPif - a : a;
+  return y < 0.0f ? -a : a;
+}
+
 }  // namespace vtrack::core::vmath

@@ -9,6 +9,7 @@
 //  - every l_i = 0 (log l_i = -inf; or their weighted sum underflows): nothing is learnt, the
 //    weights stay as they were, the log normaliser is -inf (so a log evidence becomes -inf);
 //  - a NaN or +inf log l_i is a modelling error: InvalidArgument naming the particle.
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -41,6 +42,13 @@ class WeightUpdate {
   // `uniform_log_w` (equal weights, e.g. right after resampling). Thread-safe across blocks.
   void block(Eigen::Index b, const double* log_w, const double* log_lik,
              const models::StatesView<double>* states = nullptr, double uniform_log_w = 0.0);
+  // The same for float states (the sums are accumulated in double), and without states.
+  void block(Eigen::Index b, const double* log_w, const double* log_lik,
+             const models::StatesView<float>* states, double uniform_log_w = 0.0);
+  void block(Eigen::Index b, const double* log_w, const double* log_lik, std::nullptr_t,
+             double uniform_log_w) {
+    weigh(b, log_w, log_lik, uniform_log_w);
+  }
   // Combines the blocks in order. InvalidArgument on a NaN or +inf t_i. Writes nothing.
   ReweightResult finish();
   // The weighted mean sum_i w_i x_i under the updated weights (part-based eq. 8), after finish()
@@ -68,6 +76,11 @@ class WeightUpdate {
     Eigen::Index invalid;  // first index with NaN or +inf t_i, or -1
     Eigen::Index argmax;   // first index of the block's max
   };
+  // block() without the state sums; false when the block holds an invalid t_i (nothing summed).
+  bool weigh(Eigen::Index b, const double* log_w, const double* log_lik, double uniform_log_w);
+  template <typename Scalar>
+  void sum_states(Eigen::Index b, const models::StatesView<Scalar>& states);
+
   Eigen::Index n_ = 0;
   Eigen::Index d_ = 0;
   bool keep_log_ = true;

@@ -18,6 +18,11 @@
 //      the process noise, and it works for singular noise (constant velocity's discrete model,
 //      the second-order auto-regressive model) where a state-space random walk would not.
 //
+// Precision: Scalar is the type of the states (double, or float for large particle sets: half
+// the memory traffic and twice the vector width in propagation, gather and likelihood; the
+// weights, their sums, the estimates and the log evidence stay in double). The random draws are
+// the same for both, so a float filter follows its double twin to within float round-off.
+//
 // Measurement conventions: `prior` is the density of x_0, one step before the first measurement
 // (as a Kalman filter's), so every step(z) first propagates. A NaN in z is an InvalidArgument
 // (the filter is unchanged; call predict() for a missing measurement). When every particle has
@@ -70,12 +75,18 @@ void validate(const SirParams& params);
 Eigen::MatrixXd sample_prior(const core::Gaussian& prior, Eigen::Index n, BlockStreams& streams,
                              int threads);
 
-template <class Motion, class Observation, class Proposal = Bootstrap>
+template <class Motion, class Observation, class Proposal = Bootstrap, typename Scalar = double>
 class Sir {
+  static_assert(std::is_same_v<Scalar, double> || std::is_same_v<Scalar, float>,
+                "particle states are double or float");
+  using States = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;  // N x d, one per row
+  using View = models::StatesView<Scalar>;
   static constexpr bool kBootstrap = std::is_same_v<Proposal, Bootstrap>;
   static constexpr bool kWholeMotion = is_whole_array_v<Motion>;
   static constexpr bool kWholeObservation = is_whole_array_v<Observation>;
   static_assert(kBootstrap || !kWholeMotion, "a proposal replaces the motion model's sampling");
+  static_assert(std::is_same_v<Scalar, double> || (!kWholeMotion && !kWholeObservation),
+                "whole-array (Python) models take double arrays");
   // Resampled states are gathered lazily, block by block, by the next propagation.
   static constexpr bool kLazyGather = kBootstrap && !kWholeMotion;
 
@@ -87,9 +98,10 @@ class Sir {
       throw InvalidArgument("prior has dimension " + std::to_string(prior.dim()) +
                             ", the motion model " + std::to_string(motion_.dim()));
     }
-    set_ = ParticleSet<double>(sample_prior(prior, params_.n_particles, streams_, params_.threads));
+    set_ = ParticleSet<Scalar>(
+        sample_prior(prior, params_.n_particles, streams_, params_.threads).template cast<Scalar>());
     mean_ = set_.mean();
-    map_ = set_.map_estimate();
+    map_ = set_.map_estimate().template cast<double>();
   }
   // From given particles (N x d, one per row), equally weighted; N = rows (n_particles ignored).
   Sir(Motion motion, Observation observation, Eigen::MatrixXd particles, const SirParams& params,
@@ -101,9 +113,9 @@ class Sir {
                             ", the motion model " + std::to_string(motion_.dim()));
     }
     if (!particles.allFinite()) throw InvalidArgument("particles contain NaN or inf");
-    set_ = ParticleSet<double>(std::move(particles));
+    set_ = ParticleSet<Scalar>(particles.template cast<Scalar>());
     mean_ = set_.mean();
-    map_ = set_.map_estimate();
+    map_ = set_.map_estimate().template cast<double>();
   }
 
   // One predict-update-resample cycle with measurement z; returns the weighted mean (eq. 8).
@@ -123,7 +135,7 @@ class Sir {
   }
 
   // The particle set after the last step (resampled if it was).
-  const ParticleSet<double>& particles() const {
+  const ParticleSet<Scalar>& particles() const {
     if (pending_) {
       gather_rows(set_.states(), set_.ancestors().data(), set_.size(), next_, params_.threads);
       set_.states().swap(next_);
@@ -183,13 +195,21 @@ class Sir {
 
   // eps for the n x nr block of block b at `out` (columns `stride` apart), from b's stream. The
   // normals are drawn in single precision (core::LaneRng; twice as fast as double precision,
-  // relative error < 1e-6, far below any Monte Carlo error) and widened.
-  void draw_noise(Eigen::Index b, Eigen::Index n, int nr, double* out, Eigen::Index stride) {
+  // relative error < 1e-6, far below any Monte Carlo error), in one call for the whole block (so
+  // the draws do not depend on the stride or on Scalar), and widened for double states.
+  void draw_noise(Eigen::Index b, Eigen::Index n, int nr, Scalar* out, Eigen::Index stride) {
+    const auto count = static_cast<std::size_t>(n * nr);
+    if constexpr (std::is_same_v<Scalar, float>) {
+      if (stride == n) {
+        streams_[b].fill_normal(out, count);
+        return;
+      }
+    }
     Eigen::VectorXf normals(n * nr);
-    streams_[b].fill_normal(normals.data(), static_cast<std::size_t>(normals.size()));
+    streams_[b].fill_normal(normals.data(), count);
     for (int k = 0; k < nr; ++k) {
-      Eigen::Map<Eigen::VectorXd>(out + k * stride, n) =
-          normals.segment(k * n, n).template cast<double>();
+      Eigen::Map<Eigen::Matrix<Scalar, Eigen::Dynamic, 1>>(out + k * stride, n) =
+          normals.segment(k * n, n).template cast<Scalar>();
     }
   }
 
@@ -201,8 +221,8 @@ class Sir {
     const BlockRange r = block_range(b, set_.size());
     const Eigen::Index n = r.size();
     const int nr = noise_dim();
-    Eigen::MatrixXd local_eps;
-    double* eps_data;
+    States local_eps;
+    Scalar* eps_data;
     Eigen::Index stride;
     if (keep_noise()) {
       eps_data = eps_.data() + r.begin;
@@ -213,20 +233,18 @@ class Sir {
       stride = n;
     }
     draw_noise(b, n, nr, eps_data, stride);
-    const models::StatesView<double> eps(Eigen::Map<const Eigen::MatrixXd, 0, Eigen::OuterStride<>>(
-        eps_data, n, nr, Eigen::OuterStride<>(stride)));
-    Eigen::MatrixXd gathered;
+    const View eps(Eigen::Map<const States, 0, Eigen::OuterStride<>>(eps_data, n, nr,
+                                                                     Eigen::OuterStride<>(stride)));
+    States gathered;
     if (pending_) {
       gathered.resize(n, set_.dim());
       const std::int64_t* a = set_.ancestors().data() + r.begin;
       for (Eigen::Index c = 0; c < set_.dim(); ++c) {
-        const double* from = set_.states().col(c).data();
+        const Scalar* from = set_.states().col(c).data();
         for (Eigen::Index i = 0; i < n; ++i) gathered(i, c) = from[a[i]];
       }
     }
-    const models::StatesView<double> prev =
-        pending_ ? models::StatesView<double>(gathered)
-                 : models::StatesView<double>(set_.states().middleRows(r.begin, n));
+    const View prev = pending_ ? View(gathered) : View(set_.states().middleRows(r.begin, n));
     if constexpr (kBootstrap) {
       (void)z;
       motion_.propagate(prev, eps, next_.middleRows(r.begin, n));
@@ -245,7 +263,7 @@ class Sir {
   // to a block-sized buffer.
   void weigh_block(Eigen::Index b, const Eigen::VectorXd& z) {
     const BlockRange r = block_range(b, set_.size());
-    const models::StatesView<double> x(next_.middleRows(r.begin, r.size()));
+    const View x(next_.middleRows(r.begin, r.size()));
     Eigen::VectorXd local;
     double* ll = loglik_.data() + r.begin;
     if (!keep_loglik()) {
@@ -255,8 +273,8 @@ class Sir {
     if constexpr (!kWholeObservation) observation_.log_likelihood(x, z, ll);
     if constexpr (!kBootstrap) {
       Eigen::VectorXd correction(r.size());  // log p(x|x_prev) - log q(x|x_prev, z), eq. 5
-      proposal_.log_weight(models::StatesView<double>(set_.states().middleRows(r.begin, r.size())),
-                           x, z, correction.data());
+      proposal_.log_weight(View(set_.states().middleRows(r.begin, r.size())), x, z,
+                           correction.data());
       Eigen::Map<Eigen::VectorXd>(ll, r.size()) += correction;
     }
     if (weights_uniform_) {
@@ -330,7 +348,7 @@ class Sir {
       mean_ = set_.mean();
     }
     ess_ = set_.ess();
-    map_ = set_.map_estimate();
+    map_ = set_.map_estimate().template cast<double>();
   }
 
   void resample_and_move(const Eigen::VectorXd& z) {
@@ -358,7 +376,7 @@ class Sir {
       // The moves need each particle's ancestor state, noise and likelihood, carried along.
       gather_rows(prev_, a, n, next_, threads);
       prev_.swap(next_);
-      Eigen::MatrixXd moved;
+      States moved;
       gather_rows(eps_, a, n, moved, threads);
       eps_.swap(moved);
       Eigen::VectorXd ll;
@@ -371,12 +389,12 @@ class Sir {
   // One block's proposals: eps', x' = propagate(x^anc, eps'), log p(z|x') and the uniforms of the
   // accept test, as block-local buffers (the fused path) or as views into whole arrays (a
   // whole-array observation model evaluates all proposals at once).
-  using BlockMatrix = Eigen::Map<Eigen::MatrixXd, 0, Eigen::OuterStride<>>;
+  using BlockMatrix = Eigen::Map<States, 0, Eigen::OuterStride<>>;
   struct Proposals {
     BlockMatrix eps, x;
     Eigen::Map<Eigen::VectorXd> ll, u;
   };
-  static Proposals rows_of(Eigen::MatrixXd& eps, Eigen::MatrixXd& x, Eigen::VectorXd& ll,
+  static Proposals rows_of(States& eps, States& x, Eigen::VectorXd& ll,
                            Eigen::VectorXd& u, Eigen::Index begin, Eigen::Index n) {
     return {BlockMatrix(eps.data() + begin, n, eps.cols(), Eigen::OuterStride<>(eps.rows())),
             BlockMatrix(x.data() + begin, n, x.cols(), Eigen::OuterStride<>(x.rows())),
@@ -394,7 +412,7 @@ class Sir {
         // Fused: a block proposes, evaluates and accepts while its data are in cache.
         for_blocks(blocks, params_.threads, [&](Eigen::Index b) {
           const Eigen::Index size = block_range(b, n).size();
-          Eigen::MatrixXd eps(size, noise_dim()), x(size, motion_.dim());
+          States eps(size, noise_dim()), x(size, motion_.dim());
           Eigen::VectorXd ll(size), u(size);
           Proposals p = rows_of(eps, x, ll, u, 0, size);
           propose(b, z, p);
@@ -426,17 +444,17 @@ class Sir {
     const int nr = noise_dim();
     draw_noise(b, r.size(), nr, p.eps.data(), p.eps.outerStride());
     for (int k = 0; k < nr; ++k) {
-      double* q = p.eps.data() + k * p.eps.outerStride();
-      const double* e = &eps_(r.begin, k);
-      for (Eigen::Index i = 0; i < r.size(); ++i) q[i] = e[i] + params_.move_scale * q[i];
+      Scalar* q = p.eps.data() + k * p.eps.outerStride();
+      const Scalar* e = &eps_(r.begin, k);
+      const auto scale = static_cast<Scalar>(params_.move_scale);
+      for (Eigen::Index i = 0; i < r.size(); ++i) q[i] = e[i] + scale * q[i];
     }
     streams_[b].fill_uniform(p.u.data(), r.size());
     if constexpr (!kWholeMotion) {
-      motion_.propagate(models::StatesView<double>(prev_.middleRows(r.begin, r.size())),
-                        models::StatesView<double>(p.eps), p.x);
+      motion_.propagate(View(prev_.middleRows(r.begin, r.size())), View(p.eps), p.x);
     }
     if constexpr (!kWholeObservation) {
-      observation_.log_likelihood(models::StatesView<double>(p.x), z, p.ll.data());
+      observation_.log_likelihood(View(p.x), z, p.ll.data());
     }
   }
   // Accepts or rejects block b's proposals; returns the number accepted.
@@ -446,7 +464,9 @@ class Sir {
     // log alpha = log p(z|x') - log p(z|x) + log N(eps') - log N(eps); accept if log u < log alpha.
     Eigen::ArrayXd log_alpha = p.ll - loglik_.segment(r.begin, n);
     log_alpha -= 0.5 * (p.eps.rowwise().squaredNorm() -
-                        eps_.middleRows(r.begin, n).rowwise().squaredNorm()).array();
+                        eps_.middleRows(r.begin, n).rowwise().squaredNorm())
+                           .array()
+                           .template cast<double>();
     std::vector<unsigned char> take(static_cast<std::size_t>(n));
     Eigen::Index count = 0;
     for (Eigen::Index i = 0; i < n; ++i) {
@@ -457,8 +477,8 @@ class Sir {
     // Accepted rows replace the current ones, column by column (contiguous: the loop vectorises).
     auto blend = [&](auto& dst, const auto& src) {
       for (Eigen::Index c = 0; c < dst.cols(); ++c) {
-        double* to = dst.data() + c * dst.rows() + r.begin;
-        const double* from = src.data() + c * src.outerStride();
+        auto* to = dst.data() + c * dst.rows() + r.begin;
+        const auto* from = src.data() + c * src.outerStride();
         const unsigned char* t = take.data();
         for (Eigen::Index i = 0; i < n; ++i) to[i] = t[i] ? from[i] : to[i];
       }
@@ -476,15 +496,15 @@ class Sir {
   BlockStreams streams_;
   core::Rng rng_;  // resampling (sequential)
   // Mutable: particles() completes a pending (lazy) resampling.
-  mutable ParticleSet<double> set_;
-  mutable Eigen::MatrixXd next_;
+  mutable ParticleSet<Scalar> set_;
+  mutable States next_;
   mutable bool pending_ = false;
   // The weights are equal (after a resampling) but set_'s weight arrays were not written yet.
   mutable bool weights_uniform_ = false;
   bool fused_resampling_ = false;  // the last update's resampling reads update_ directly
-  Eigen::MatrixXd prev_, eps_;
+  States prev_, eps_;
   Eigen::VectorXd loglik_;
-  Eigen::MatrixXd prop_eps_, prop_x_;
+  States prop_eps_, prop_x_;
   Eigen::VectorXd prop_ll_, uniform_;
   WeightUpdate update_;
   Eigen::VectorXd mean_, map_;
