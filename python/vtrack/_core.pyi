@@ -835,6 +835,7 @@ class ParticleFilter:
         observation: ObservationModel,
         *,
         prior: Union[Gaussian, ArrayLike],
+        dtype: Literal["float64", "float32"] = "float64",
         n_particles: int = 1000,
         resampling: Literal["multinomial", "stratified", "systematic", "residual"] = "systematic",
         ess_threshold: float = 1.0,
