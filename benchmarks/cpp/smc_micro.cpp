@@ -3,7 +3,8 @@
 // stage. One thread, process CPU time, medians.
 //
 // Build against the library of a `make build` (same flags as the library) and run, on one line:
-//   g++ -std=c++17 -O3 -march=native -fno-trapping-math -fno-math-errno -Icpp/include
+//   g++ -std=c++17 -O3 -march=native -fno-trapping-math -fno-math-errno -fPIC
+//       -fno-semantic-interposition -Icpp/include
 //       -isystem /usr/include/eigen3 -isystem /usr/include/opencv4 benchmarks/cpp/smc_micro.cpp
 //       build/wheel/libvtrack.a -lopencv_core -o build/smc_micro && build/smc_micro
 //
@@ -23,6 +24,15 @@
 // the 1e5 step: normals 24 % (~5.5 ns), gather of the resampled states + widening of the noise
 // 16 %, exp + block sums 13.5 %, likelihood 13.4 %, propagation 12.5 % (store-bound: the new
 // states go to a 3.2 MB array), resampling 11.4 % (was 14 % plus 4 % for writing the weights).
+// 2026-11-25 (a Sapphire Rapids Xeon, 2 vCPUs, load average ~10 from other builds; ns per
+// particle at N = 1e5):
+//   the library as built before: normals (4) 2.2, exp 0.9, SIR step 11.8-13.6 (double states);
+//   float states (Sir's Scalar = float, range-bearing residuals and atan2 in float): 10.0-11.2;
+//   512-bit vectors for lane_rng, reweight, linear_transition and range_bearing: measured alone
+//   (objects built without -fPIC) normals 2.2 -> 1.6, float step ~10 -> 8.0; but in the library
+//   (-fPIC) normals went to 4.3: LaneRng::next was no longer inlined into fill_normal, as GCC may
+//   not inline a function another library could interpose. With -fno-semantic-interposition:
+//   normals 1.5, exp 0.9, SIR step 10.3-10.5 (double) and 8.1-8.5 (float).
 // Tried and dropped: prefetching the gather's ancestors (no gain: they are sorted and the
 // hardware prefetcher follows them); splitting LaneRng's 64-bit draws into 32-bit halves by
 // shifts instead of memcpy (1.2-1.4 ns per normal instead of 0.98, same output).
