@@ -279,29 +279,19 @@ class PixelMoments {
     std::fill(moments_.begin(), moments_.end(), Moments{0.0, 0.0, 0.0, 0.0});
     add<1>(bins, r);
   }
+  // Adds (Sign 1) or removes (-1) the pixels of `r`, line by line along its longer side: the
+  // strips between neighbouring boxes are mostly a few pixels wide and a box tall, and a line
+  // has a set-up cost (its first pixel's copy, coordinates and pointer).
   template <int Sign>
   void add(const HsvBinImage& bins, const Rect& r) {
     if (is_empty(r)) return;
-    const int x0 = r.x - bins.roi().x;
-    for (int row = r.y; row < r.y + r.height; ++row) {
-      const double y = row - bins.roi().y;
-      const std::uint16_t* idx = bins.row_ptr(row) + x0;
-      // Pixel (row, x) goes to copy (row + x) mod kCopies.
-      Moments* copy[kCopies];
-      for (int k = 0; k < kCopies; ++k) {
-        copy[k] = moments_.data() + static_cast<std::size_t>(m_) * ((row + x0 + k) % kCopies);
-      }
-      int c = 0;
-      for (; c + kCopies <= r.width; c += kCopies) {
-        for (int k = 0; k < kCopies; ++k) {
-          const double x = x0 + c + k;
-          copy[k][idx[c + k]] += Moments{1.0, x, y, x * x + y * y} * Sign;
-        }
-      }
-      for (int k = 0; c < r.width; ++c, ++k) {
-        const double x = x0 + c;
-        copy[k][idx[c]] += Moments{1.0, x, y, x * x + y * y} * Sign;
-      }
+    const int x0 = r.x - bins.roi().x, y0 = r.y - bins.roi().y;
+    const std::uint16_t* first = bins.row_ptr(r.y) + x0;
+    const std::ptrdiff_t stride = bins.roi().width;
+    if (r.width >= r.height) {
+      add_lines<Sign, true>(first, stride, 1, r.height, r.width, x0, y0);
+    } else {
+      add_lines<Sign, false>(first, 1, stride, r.width, r.height, y0, x0);
     }
   }
   // rho of the box b = (x, y, w, h), whose clipped pixel rect is r (eq. 10).
@@ -333,6 +323,31 @@ class PixelMoments {
  private:
   // n, X, Y, S of one bin.
   typedef double Moments __attribute__((vector_size(32)));
+
+  // `lines` lines of `length` pixels, `line_step` apart, their pixels `step` apart, from `first`.
+  // Along a line the coordinate `along` (x if ByRows, else y) counts up from t0; across lines the
+  // other coordinate counts up from f0. Pixel (x, y) goes to copy (x + y) mod 2.
+  template <int Sign, bool ByRows>
+  void add_lines(const std::uint16_t* first, std::ptrdiff_t line_step, std::ptrdiff_t step,
+                 int lines, int length, int t0, int f0) {
+    static_assert(kCopies == 2, "copies alternate along a line");
+    for (int l = 0; l < lines; ++l) {
+      const double f = f0 + l, f2 = f * f;
+      const std::uint16_t* idx = first + l * line_step;
+      Moments* even = moments_.data() + static_cast<std::size_t>(m_) * ((t0 + f0 + l) & 1);
+      Moments* odd = moments_.data() + static_cast<std::size_t>(m_) * ((t0 + f0 + l + 1) & 1);
+      const auto pixel = [&](int i) {
+        const double t = t0 + i;
+        return (ByRows ? Moments{1.0, t, f, f2 + t * t} : Moments{1.0, f, t, f2 + t * t}) * Sign;
+      };
+      int i = 0;
+      for (; i + 2 <= length; i += 2) {
+        even[idx[i * step]] += pixel(i);
+        odd[idx[(i + 1) * step]] += pixel(i + 1);
+      }
+      if (i < length) even[idx[i * step]] += pixel(i);
+    }
+  }
   struct Bin {
     int u;
     double sqrt_q;
