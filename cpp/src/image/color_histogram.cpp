@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <string>
 
@@ -632,9 +633,13 @@ void HsvBinImage::assign(const cv::Mat& bgr, const Rect& roi) {
   const RowQuantiser quantise_row(params_);
   for (int row = 0; row < roi_.height; ++row) {
     if (row + kPrefetchRows < roi_.height) {
-      const unsigned char* ahead =
-          bgr.ptr<unsigned char>(roi_.y + row + kPrefetchRows) + 3 * roi_.x;
-      for (std::size_t b = 0; b < row_bytes; b += 64) __builtin_prefetch(ahead + b, 0, 3);
+      // Every cache line the row's bytes touch, from the one holding its first byte (64-byte
+      // steps from the first byte itself miss the last line when the row starts mid-line).
+      const auto ahead = reinterpret_cast<std::uintptr_t>(
+          bgr.ptr<unsigned char>(roi_.y + row + kPrefetchRows) + 3 * roi_.x);
+      for (std::uintptr_t a = ahead & ~std::uintptr_t{63}; a < ahead + row_bytes; a += 64) {
+        __builtin_prefetch(reinterpret_cast<const void*>(a), 0, 3);
+      }
     }
     quantise_row(bgr.ptr<unsigned char>(roi_.y + row) + 3 * roi_.x, roi_.width,
                  buffer_.data() + static_cast<std::size_t>(row) * roi_.width);
