@@ -360,6 +360,28 @@ TEST(ColorModel, BadInput) {
   EXPECT_EQ(rho, 0.0);
 }
 
+TEST(ColorHistogram, EveryRegionWidthAndOffsetMatchesOpenCv) {
+  // The quantiser works on 16 pixels at a time and treats each row's last 1-15 pixels apart (two
+  // ways: rows shorter or longer than 64 bytes), so every width from 1 to 50 px at several
+  // offsets, regions ending at the frame's right edge included, against OpenCV's bins.
+  Rng rng(17);
+  const ColorHistogramParams p{16, 4, 4, false};
+  const cv::Mat frame = random_frame(rng, 12, 60);
+  const std::vector<int> expected = brute_force_bins(frame, p);
+  HsvBinImage bins(p);
+  for (int width = 1; width <= 50; ++width) {
+    for (const int x : {0, 1, 5, 60 - width}) {
+      bins.assign(frame, Rect{x, 2, width, 7});
+      for (int r = 2; r < 9; ++r) {
+        for (int c = x; c < x + width; ++c) {
+          ASSERT_EQ(bins.at(r, c), expected[static_cast<std::size_t>(r * frame.cols + c)])
+              << "width " << width << " x " << x << " pixel " << r << "," << c;
+        }
+      }
+    }
+  }
+}
+
 TEST(ColorHistogram, HsvIsOpenCvsForEveryColor) {
   // HsvBinImage computes OpenCV's integer HSV_FULL itself: with 256 bins per channel its bin
   // indices are the H, S, V bytes, which must equal cv::cvtColor's for all 2^24 BGR colors.

@@ -473,16 +473,28 @@ class RowQuantiser {
     constexpr __mmask64 kPixels = (1ULL << 48) - 1;  // the 48 bytes of 16 pixels
     int c = 0;
     for (; c + 16 <= n; c += 16) {
-      const Lanes u = bins(_mm512_maskz_loadu_epi8(kPixels, bgr + 3 * c));
+      const Lanes u = bins(_mm512_maskz_loadu_epi8(kPixels, bgr + 3 * c), channel_);
       const auto u16 = __builtin_convertvector(u, std::int16_t __attribute__((vector_size(32))));
       std::memcpy(out + c, &u16, sizeof(u16));
     }
-    if (c < n) {  // the last 1-15 pixels, masked (nothing read or written beyond them)
-      const int rest = n - c;
-      const Lanes u = bins(_mm512_maskz_loadu_epi8((1ULL << (3 * rest)) - 1, bgr + 3 * c));
-      _mm512_mask_cvtepi32_storeu_epi16(out + c, static_cast<__mmask16>((1u << rest) - 1),
-                                        reinterpret_cast<__m512i>(u));
+    if (c == n) return;
+    // The last 1-15 pixels. A masked load still fetches every cache line of its 64 bytes, and the
+    // line after the row is not in cache (nor prefetched): it cost a DRAM wait per row. So the
+    // load is of the 64 bytes ending with the row's last byte when the row has that many, the
+    // channels' byte indices shifted to match; a masked store writes only the pixels' bins.
+    const int rest = n - c;
+    Lanes u;
+    if (3 * n >= 64) {
+      const __m512i shift = _mm512_set1_epi8(static_cast<char>(64 - 3 * rest));
+      const __m512i channel[3] = {_mm512_add_epi8(channel_[0], shift),
+                                  _mm512_add_epi8(channel_[1], shift),
+                                  _mm512_add_epi8(channel_[2], shift)};
+      u = bins(_mm512_loadu_si512(bgr + 3 * n - 64), channel);
+    } else {
+      u = bins(_mm512_maskz_loadu_epi8((1ULL << (3 * rest)) - 1, bgr + 3 * c), channel_);
     }
+    _mm512_mask_cvtepi32_storeu_epi16(out + c, static_cast<__mmask16>((1u << rest) - 1),
+                                      reinterpret_cast<__m512i>(u));
   }
 
  private:
@@ -497,11 +509,12 @@ class RowQuantiser {
         0xFFFF, reinterpret_cast<__m512>(x), _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC));
   }
 
-  // Bin indices of the 16 pixels packed in the low 48 bytes of `px` (B, G, R each).
-  Lanes bins(__m512i px) const {
+  // Bin indices of 16 pixels packed in `px` (B, G, R each), whose bytes `index` picks (channel_
+  // for the low 48 bytes).
+  Lanes bins(__m512i px, const __m512i* index) const {
     constexpr __mmask64 kLow = 0x1111111111111111ULL;  // the low byte of each 32-bit lane
     const auto channel = [&](int c) {
-      return reinterpret_cast<Lanes>(_mm512_maskz_permutexvar_epi8(kLow, channel_[c], px));
+      return reinterpret_cast<Lanes>(_mm512_maskz_permutexvar_epi8(kLow, index[c], px));
     };
     const Lanes b = channel(0), g = channel(1), r = channel(2);
     const auto max = [](Lanes x, Lanes y) { return x > y ? x : y; };
