@@ -470,10 +470,9 @@ class RowQuantiser {
   }
 
   void operator()(const unsigned char* bgr, int n, std::uint16_t* out) const {
-    constexpr __mmask64 kPixels = (1ULL << 48) - 1;  // the 48 bytes of 16 pixels
     int c = 0;
     for (; c + 16 <= n; c += 16) {
-      const Lanes u = bins(_mm512_maskz_loadu_epi8(kPixels, bgr + 3 * c), channel_);
+      const Lanes u = bins(load48(bgr + 3 * c), channel_);
       const auto u16 = __builtin_convertvector(u, std::int16_t __attribute__((vector_size(32))));
       std::memcpy(out + c, &u16, sizeof(u16));
     }
@@ -481,7 +480,8 @@ class RowQuantiser {
     // The last 1-15 pixels. A masked load still fetches every cache line of its 64 bytes, and the
     // line after the row is not in cache (nor prefetched): it cost a DRAM wait per row. So the
     // load is of the 64 bytes ending with the row's last byte when the row has that many, the
-    // channels' byte indices shifted to match; a masked store writes only the pixels' bins.
+    // channels' byte indices shifted to match; a masked store writes only the pixels' bins. (The
+    // same for the 16-pixel loads: 48 bytes exactly.)
     const int rest = n - c;
     Lanes u;
     if (3 * n >= 64) {
@@ -502,6 +502,13 @@ class RowQuantiser {
   // raise false -Wmaybe-uninitialized warnings), intrinsics for the rest.
   typedef std::int32_t Lanes __attribute__((vector_size(64)));
   typedef float FloatLanes __attribute__((vector_size(64)));
+
+  // The 48 bytes at p in the low bytes of a vector (the rest undefined, never picked).
+  static __m512i load48(const unsigned char* p) {
+    const __m256i low = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p));
+    const __m128i high = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + 32));
+    return _mm512_inserti32x4(_mm512_castsi256_si512(low), high, 2);
+  }
 
   // Round to nearest-even (maskz: the plain intrinsic trips the same GCC 12 warning).
   static Lanes round(FloatLanes x) {
