@@ -40,16 +40,24 @@ int round_px(double v) {
   return static_cast<int>(std::clamp(std::floor(v + 0.5), -kLimit, kLimit));
 }
 
-// Calls pixel(parity, u, x, y) for each pixel of `r` (clipped, inside the bin image's region):
-// its bin u, its coordinates x, y relative to the region's origin and parity = (x + y) mod 2, for
-// the incremental histograms' two copies (PixelCounts, PixelMoments: neighbouring pixels, which
-// often share a bin, then go to different copies, so their read-modify-writes do not wait on each
-// other). Line by line along the rect's longer side: the strips between neighbouring boxes are
-// mostly a few pixels wide and a box tall (at N = 30 on PETS09, 3100 of 4559 strip rows per frame
-// were under 7 px), and a line has a set-up cost; as columns, update 75.9 -> 71.1 us
-// (benchmarks/cpp/color_micro.cpp, kernel-weighted, N = 30).
-template <class Pixel>
-void for_each_pixel(const HsvBinImage& bins, const Rect& r, Pixel pixel) {
+// The incremental histograms (PixelCounts, PixelMoments) keep kCopies copies of their per-bin
+// sums, pixel (x, y) in copy (x + y) mod kCopies, so a line's pixels go to the copies in turn
+// whether it runs along a row or a column: neighbouring pixels, which often share a bin (uniform
+// clothes, background), then update different copies, and their read-modify-writes do not wait
+// on each other. Each copy is a sum over some of the box's pixels. Two copies (by the parity of
+// x + y) -> four: update at N = 30 (benchmarks/cpp/color_micro.cpp) 50.1 -> 46.7 us kernel-
+// weighted, 32.1 -> 29.0 us unweighted.
+constexpr int kCopies = 4;
+
+// Calls pixel(sum, x, y) for each pixel of `r` (clipped, inside the bin image's region), `sum`
+// pointing at its bin's entry in its copy (of kCopies copies of m entries from `copies`), x, y its
+// coordinates relative to the region's origin. Line by line along the rect's longer side: the
+// strips between neighbouring boxes are mostly a few pixels wide and a box tall (at N = 30 on
+// PETS09, 3100 of 4559 strip rows per frame were under 7 px), and a line has a set-up cost; as
+// columns, update 75.9 -> 71.1 us (benchmarks/cpp/color_micro.cpp, kernel-weighted, N = 30).
+template <class T, class Pixel>
+void for_each_pixel(const HsvBinImage& bins, const Rect& r, T* copies, int m, Pixel pixel) {
+  static_assert(kCopies == 4, "the walk below unrolls by kCopies");
   if (is_empty(r)) return;
   const int x0 = r.x - bins.roi().x, y0 = r.y - bins.roi().y;
   const std::uint16_t* first = bins.row_ptr(r.y) + x0;
@@ -57,23 +65,31 @@ void for_each_pixel(const HsvBinImage& bins, const Rect& r, Pixel pixel) {
   const bool by_rows = r.width >= r.height;
   const int lines = by_rows ? r.height : r.width, length = by_rows ? r.width : r.height;
   const std::ptrdiff_t line_step = by_rows ? stride : 1, step = by_rows ? 1 : stride;
+  // The copies twice over: rotation + s lists copies s, s + 1, ... (mod kCopies).
+  T* rotation[2 * kCopies];
+  for (int k = 0; k < 2 * kCopies; ++k) {
+    rotation[k] = copies + static_cast<std::ptrdiff_t>(k % kCopies) * m;
+  }
   // Along a line one coordinate counts up from t0, across lines the other from f0.
   const auto walk = [&](int t0, int f0, auto xy) {
     for (int l = 0; l < lines; ++l) {
-      const int f = f0 + l, parity = (t0 + f) & 1;
+      const int f = f0 + l;
       const std::uint16_t* idx = first + l * line_step;
+      T* const* copy = rotation + ((t0 + f) & (kCopies - 1));  // pixel i's is copy[i % kCopies]
       int i = 0;
-      for (; i + 2 <= length; i += 2) {
-        xy(parity, idx[i * step], t0 + i, f);
-        xy(parity ^ 1, idx[(i + 1) * step], t0 + i + 1, f);
+      for (; i + 4 <= length; i += 4) {
+        xy(copy[0] + idx[i * step], t0 + i, f);
+        xy(copy[1] + idx[(i + 1) * step], t0 + i + 1, f);
+        xy(copy[2] + idx[(i + 2) * step], t0 + i + 2, f);
+        xy(copy[3] + idx[(i + 3) * step], t0 + i + 3, f);
       }
-      if (i < length) xy(parity, idx[i * step], t0 + i, f);
+      for (int k = 0; i < length; ++i, ++k) xy(copy[k] + idx[i * step], t0 + i, f);
     }
   };
   if (by_rows) {
-    walk(x0, y0, [&](int parity, int u, int x, int y) { pixel(parity, u, x, y); });
+    walk(x0, y0, [&](T* sum, int x, int y) { pixel(sum, x, y); });
   } else {
-    walk(y0, x0, [&](int parity, int u, int y, int x) { pixel(parity, u, x, y); });
+    walk(y0, x0, [&](T* sum, int y, int x) { pixel(sum, x, y); });
   }
 }
 
@@ -247,26 +263,26 @@ void coefficients_direct(const HsvBinImage& bins, const double* boxes, std::size
 // Unweighted histograms for the incremental method: per-bin pixel counts.
 class PixelCounts {
  public:
-  PixelCounts(int m, const float*) : m_(m), counts_(static_cast<std::size_t>(5 * m), 0) {}
+  PixelCounts(int m, const float*) : m_(m), counts_(static_cast<std::size_t>((kCopies + 1) * m)) {}
   void count(const HsvBinImage& bins, const Rect& r) {
-    std::fill(counts_.begin(), counts_.begin() + 2 * m_, 0);
-    count_rect(bins, r, counts_.data(), counts_.data() + 2 * m_);
+    std::fill(counts_.begin(), counts_.end(), 0);
+    add<1>(bins, r);
   }
   template <int Sign>
   void add(const HsvBinImage& bins, const Rect& r) {
-    std::int32_t* copy[2] = {counts_.data(), counts_.data() + m_};
-    for_each_pixel(bins, r, [&](int parity, int u, int, int) { copy[parity][u] += Sign; });
+    for_each_pixel(bins, r, counts_.data(), m_, [](std::int32_t* n, int, int) { *n += Sign; });
   }
   double rho(const HsvBinImage&, const Rect& r, const double*, const float* sqrt_q) {
-    std::int32_t* total = counts_.data() + 2 * m_;  // count_rect's scratch, free here
-    for (int u = 0; u < m_; ++u) total[u] = counts_[u] + counts_[m_ + u];
+    std::int32_t* total = counts_.data() + kCopies * m_;
+    for (int u = 0; u < m_; ++u) {
+      total[u] = (counts_[u] + counts_[m_ + u]) + (counts_[2 * m_ + u] + counts_[3 * m_ + u]);
+    }
     return rho_from_counts(total, sqrt_q, m_, area(r));
   }
 
  private:
   int m_;
-  // Two copies of the m counts (add()), then 3 x m scratch for count_rect.
-  std::vector<std::int32_t> counts_;
+  std::vector<std::int32_t> counts_;  // kCopies copies of the m counts, then their sum (rho())
 };
 
 // Kernel-weighted histograms for the incremental method. The Epanechnikov weight of a pixel,
@@ -283,14 +299,13 @@ class PixelCounts {
 // bin is clamped at 0 only against rounding, and the total weight has a closed form over the
 // box's rows and columns. Only the template's non-empty bins enter rho (eq. 10), so only they are
 // evaluated. A bin's four moments are one 32-byte vector, so a pixel costs one vector
-// read-modify-write (GCC/Clang vector extensions; AVX2 with -march=native), and neighbouring
-// pixels, which often share a bin, go to two copies of the moments by the parity of row + column,
-// so their read-modify-writes do not wait on each other (one copy: 244 us per update at N = 30,
-// benchmarks/cpp/color_micro.cpp; two: 178; four: no better than two).
+// read-modify-write (GCC/Clang vector extensions; AVX2 with -march=native), into one of kCopies
+// copies (for_each_pixel; one copy: 244 us per update at N = 30, benchmarks/cpp/color_micro.cpp;
+// two: 178; four, then row by row: no better than two).
 class PixelMoments {
  public:
   PixelMoments(int m, const float* sqrt_q)
-      : m_(m), moments_(static_cast<std::size_t>(2 * m)) {
+      : m_(m), moments_(static_cast<std::size_t>(kCopies * m)) {
     std::vector<double> q;
     for (int u = 0; u < m; ++u) {
       if (sqrt_q[u] > 0.0f) {
@@ -313,10 +328,9 @@ class PixelMoments {
   }
   template <int Sign>
   void add(const HsvBinImage& bins, const Rect& r) {
-    Moments* copy[2] = {moments_.data(), moments_.data() + m_};
-    for_each_pixel(bins, r, [&](int parity, int u, int x, int y) {
+    for_each_pixel(bins, r, moments_.data(), m_, [](Moments* sum, int x, int y) {
       const double dx = x, dy = y;
-      copy[parity][u] += Moments{1.0, dx, dy, dx * dx + dy * dy} * Sign;
+      *sum += Moments{1.0, dx, dy, dx * dx + dy * dy} * Sign;
     });
   }
   // rho of the box b = (x, y, w, h), whose clipped pixel rect is r (eq. 10).
@@ -339,13 +353,14 @@ class PixelMoments {
     // one vector, then four square roots and four products in vector operations (a scalar loop
     // over the bins spent ~10 % of an update on the square roots and the sum's dependency chain).
     typedef long long Pick __attribute__((vector_size(32)));
-    const Moments* copy1 = moments_.data() + m_;
+    static_assert(kCopies == 4, "rho sums four copies");
+    const Moments *c0 = moments_.data(), *c1 = c0 + m_, *c2 = c1 + m_, *c3 = c2 + m_;
     Moments acc = {0.0, 0.0, 0.0, 0.0};
     for (std::size_t j = 0; j < support_.size(); j += 4) {
       Moments t[4];
       for (int k = 0; k < 4; ++k) {
         const auto u = static_cast<std::size_t>(support_[j + k]);
-        t[k] = coef * (moments_[u] + copy1[u]);
+        t[k] = coef * ((c0[u] + c1[u]) + (c2[u] + c3[u]));
       }
       const Moments t01 = __builtin_shuffle(t[0], t[1], Pick{0, 4, 2, 6}) +
                           __builtin_shuffle(t[0], t[1], Pick{1, 5, 3, 7});
@@ -367,7 +382,7 @@ class PixelMoments {
   typedef double Moments __attribute__((vector_size(32)));
 
   int m_;
-  std::vector<Moments> moments_;  // two copies of m bins, by parity (for_each_pixel)
+  std::vector<Moments> moments_;  // kCopies copies of the m bins' moments
   std::vector<int> support_;      // the template's non-empty bins, padded (constructor)
   std::vector<Moments> sqrt_q_;   // their sqrt(q), four per vector
 };
