@@ -498,8 +498,8 @@ void coefficients_incremental(const HsvBinImage& bins, const double* boxes, std:
 // representable, while the float's error is under 2^-24 1044480 / v = 0.06 / v); the same holds
 // for hdiv's 1048576 / (6 d) (>= 1 / (12 d) away, error under 0.011 / d). v = 0 or d = 0 give an
 // infinite quotient, whose conversion is INT_MIN, but it is then multiplied by diff = 0 or h' = 0.
-// Per row of ~100 px: 0.3 ns per pixel, against 0.8 for GCC's auto-vectorisation of the scalar
-// loop below (benchmarks/follow.py's docstring has the figures of a whole update).
+// On a hot frame (benchmarks/cpp/color_micro.cpp, rows of ~100 px) 0.35 ns per pixel, against 1.27
+// for the scalar loop below as GCC vectorises it (benchmarks/follow.py: the whole update).
 class RowQuantiser {
  public:
   explicit RowQuantiser(const ColorHistogramParams& p)
