@@ -92,20 +92,36 @@ occluded frames and the recovery frames; CPU ms per frame:
 | NumPy color PF, sigma = 0.2 | 0.430 (0.41-0.45) / 0.636 / 0.164 | 0.393 (0.37-0.41) / 0.572 / 0.148 | 0.459 (0.43-0.50) / 0.622 / 0.090 | 0.361 (0.31-0.39) / 0.544 / 0.250 | 0.63 |
 | NumPy color PF, sigma^2 = 0.2 | 0.298 (0.25-0.32) / 0.480 / 0.285 | 0.258 (0.25-0.27) / 0.356 / 0.338 | 0.328 (0.22-0.40) / 0.491 / 0.216 | 0.229 (0.19-0.27) / 0.356 / 0.384 | 1.05 |
 | NumPy color PF, sigma = 0.2, kernel | 0.480 (0.47-0.49) / 0.716 / 0.115 | 0.415 (0.38-0.46) / 0.674 / 0.130 | 0.485 (0.48-0.49) / 0.662 / 0.058 | 0.428 (0.41-0.44) / 0.661 / 0.177 | 1.31 |
-| vtrack color PF, N = 30 | 0.502 (0.48-0.53) / 0.727 / 0.123 | 0.474 (0.46-0.49) / 0.709 / 0.141 | 0.507 (0.50-0.52) / 0.664 / 0.063 | 0.445 (0.40-0.49) / 0.656 / 0.193 | 0.15 |
-| vtrack part-based PF, 2 x 15 | 0.506 (0.46-0.54) / 0.759 / 0.123 | 0.472 (0.45-0.49) / 0.720 / 0.128 | 0.528 (0.50-0.55) / 0.749 / 0.073 | 0.452 (0.39-0.51) / 0.680 / 0.186 | 0.11 |
-| vtrack part-based PF, 2 x 30 | 0.540 (0.52-0.57) / 0.771 / 0.114 | 0.497 (0.48-0.51) / 0.739 / 0.128 | 0.565 (0.51-0.60) / 0.777 / 0.052 | 0.481 (0.46-0.51) / 0.688 / 0.180 | 0.15 |
+| vtrack color PF, N = 30 | 0.502 (0.48-0.53) / 0.727 / 0.123 | 0.474 (0.46-0.49) / 0.709 / 0.141 | 0.507 (0.50-0.52) / 0.664 / 0.063 | 0.445 (0.40-0.49) / 0.656 / 0.193 | 0.04 |
+| vtrack part-based PF, 2 x 15 | 0.506 (0.46-0.54) / 0.759 / 0.123 | 0.472 (0.45-0.49) / 0.720 / 0.128 | 0.528 (0.50-0.55) / 0.749 / 0.073 | 0.452 (0.39-0.51) / 0.680 / 0.186 | 0.03 |
+| vtrack part-based PF, 2 x 30 | 0.540 (0.52-0.57) / 0.771 / 0.114 | 0.497 (0.48-0.51) / 0.739 / 0.128 | 0.565 (0.51-0.60) / 0.777 / 0.052 | 0.481 (0.46-0.51) / 0.688 / 0.180 | 0.04 |
 
 (vtrack rows: the run that added them, the OpenCV and NumPy rows unchanged within 0.01 in it; the
-ms of the vtrack rows and the NumPy kernel row: the run after issue 11's speed work, whose accuracy
-figures were the same to the last digit.)
+ms of the NumPy kernel row: the run after issue 11's first speed work; of the vtrack rows: the run
+`--figure "" --trackers vtrack --speed-particles` after its second (colorspeed2), whose accuracy
+figures were, as the first's, the same to the last digit.)
 The bar of issue 11: on the occluded segments the part-based PF with 30 particles per part beats
 the conventional PF (0.540 vs 0.502) and every OpenCV tracker (CSRT 0.492), and is not worse on
 the clean ones (0.497 vs 0.474); with 15 per part it ties the conventional PF (0.506 / 0.472 vs
-0.502 / 0.474, within the seeds' spread). Per frame at 30 per part: 0.15 ms CPU (<= 1 ms: met).
+0.502 / 0.474, within the seeds' spread). Per frame at 30 per part: 0.04 ms CPU (<= 1 ms: met).
 Speed: the colour PF against the NumPy filter with the same histogram at the same N (issue 11 asks
->= 10x). Time table, seed 0, CPU ms per frame, two runs of this script on the loaded machine (NumPy
-/ vtrack, ratio):
+>= 10x). Time table, seed 0, CPU ms per frame, two runs of `--figure "" --trackers NONE --seeds 0
+--speed-particles 30 90 210` on the loaded machine (an AMD EPYC, Zen 5 with AVX-512; NumPy /
+vtrack, ratio), after issue 11's second speed session (colorspeed2, below):
+
+| histogram | N = 30 | N = 90 | N = 210 |
+|---|---|---|---|
+| kernel-weighted (vtrack's default), run 1 | 0.552 / 0.038, 14.5x | 1.434 / 0.080, 17.9x | 3.054 / 0.152, 20.1x |
+| kernel-weighted, run 2 | 0.538 / 0.037, 14.5x | 1.391 / 0.078, 17.8x | 2.986 / 0.149, 20.1x |
+| unweighted, run 1 | 0.340 / 0.026, 12.9x | 0.779 / 0.054, 14.5x | 1.606 / 0.106, 15.1x |
+| unweighted, run 2 | 0.335 / 0.026, 12.8x | 0.788 / 0.053, 14.8x | 1.625 / 0.104, 15.6x |
+| part-based 2 x N (vs NumPy kernel at N), runs 1 / 2 | 0.043 / 0.042, 12.9x / 13.0x | 0.097 / 0.096, 14.8x / 14.6x | 0.193 / 0.190, 15.8x / 15.7x |
+
+The bar is met at every N, for the default filter (14.5-20x) and the unweighted one (12.8-15.6x).
+In the same session main's filter measured 7.7x / 9.6x / 10.8x and 7.4x / 9.3x / 10.5x (kernel),
+6.7x / 8.1x / 8.6x and 6.9x / 8.1x / 8.4x (unweighted), 7.4x / 8.0x / 8.3x and 6.9x / 7.6x / 7.9x
+(part-based) at N = 30 / 90 / 210; the NumPy rows the same within 5 %. The first session's table
+(another day's load, NumPy then ~2x slower):
 
 | histogram | N = 30 | N = 90 | N = 210 |
 |---|---|---|---|
@@ -115,8 +131,8 @@ Speed: the colour PF against the NumPy filter with the same histogram at the sam
 | unweighted, run 2 | 0.73 / 0.10, 7.0x | 1.40 / 0.19, 7.2x | 3.05 / 0.38, 7.9x |
 | part-based 2 x N (vs NumPy kernel at N), runs 1 / 2 | 0.15 / 0.14, 7.7x / 8.4x | 0.37 / 0.31, 9.1x / 10.9x | 0.70 / 0.63, 8.8x / 10.4x |
 
-The bar is met for the default filter at N = 90 and 210 (10-12x) and not at N = 30 (7x); the
-unweighted filter is at 7-8x. Before issue 11's speed work the table compared vtrack's
+It met the bar for the default filter at N = 90 and 210 (10-12x) and not at N = 30 (7x); the
+unweighted filter was at 7-8x. Before issue 11's speed work the table compared vtrack's
 kernel-weighted filter with the unweighted NumPy filter (unfair to vtrack: NumPy's weights cost it
 1.5-2.2x) and vtrack took 0.20 / 0.49 / 1.03 ms (kernel) and 0.11 / 0.18 / 0.33 ms (unweighted)
 at N = 30 / 90 / 210. What changed, measured with benchmarks/cpp/color_micro.cpp (the filter on
@@ -165,6 +181,49 @@ and after (CPU ms per frame, NumPy kernel filter / vtrack default, ratio): N = 3
 (5.7x) -> 0.69 / 0.09 (7.7x); N = 90 1.89 / 0.24 (7.8x) -> 1.72 / 0.18 (9.5x); the unweighted
 filter at N = 30 4.2x -> 7.7x; AUCs identical. The bar (10x) is still not met at N = 30: what is
 left of an update is the moment counting (~52 %) and the quantiser (~39 %).
+
+Second speed session (colorspeed2, the AMD EPYC above). color_micro's update (medians of 3-7
+alternating runs of the builds before and after each step) and, where named, the coefficients
+alone on the clouds the filter scored (dumped from its likelihood); every step keeps the
+histograms (bins bit-exact; counts and moments exact integers whatever the order or copy they
+are summed in), and only the vectorised rho changes the tracks, by summing bins in another order
+(rho within 1e-15; colour PF boxes within 5.7e-13 of before on every segment, seeds 0-4, N = 30
+and 90; part-based within 1.3e-12); the accuracy tables are unchanged to the last digit:
+
+* an AVX-512 quantiser (image/color_histogram.cpp's RowQuantiser, BW + VBMI; the scalar loop
+  stays as the fallback): 16 pixels per vector, B, G, R picked by vpermb, the reciprocal tables'
+  entries computed in the lanes (a correctly rounded float quotient rounds to each entry: all 2^24
+  colours tested), each row's tail masked rather than a scalar loop: quantising a hot frame 16.4
+  -> 4.5 us (1.27 -> 0.35 ns/px), update 86.3 -> 75.6 us (kernel), 50.9 -> 44.6 us (unweighted);
+* strips walked along their longer side (most are 1-6 px wide and a box tall: per-row set-up on
+  3100 of 4559 strip rows per frame): 75.9 -> 71.1 us; the unweighted counts walked the same way,
+  45.5 -> 44.7 us (coefficients 24.9 -> 22.4 us);
+* rho over the template's bins four at a time (their weights transposed into one vector, vector
+  square roots): 70.4 -> 63.1 us (N = 210: 296 -> 254 us);
+* the row prefetch covering every cache line of the row (64-byte steps from its first byte missed
+  the last line whenever the row started mid-line; perf put 30 % of the quantiser on that line's
+  load): kernel 62.1 -> 54.7 us, unweighted 44.6 -> 39.1 us;
+* the quantiser's loads reading only their pixels' bytes: the tail as the 64 bytes ending with the
+  row's last byte (a masked load still fetches every line of its 64 bytes, and the line after the
+  row waited on DRAM), the 16-pixel loads as 32 + 16 bytes: kernel 54.9 -> 49.9 us, unweighted
+  37.5 -> 32.6 us;
+* counting_order's window costs in one vectorised int32 loop, counted rects masked instead of
+  erased from a list: kernel 49.6 -> 48.3 us, unweighted 33.7 -> 32.1 us; N = 210 233 -> 198 us
+  and 173 -> 134 us (it was a third of the unweighted coefficients there);
+* four copies of the per-bin sums, pixel (x, y) in copy (x + y) mod 4 (was two, by parity):
+  kernel 50.1 -> 46.7 us, unweighted 32.1 -> 29.0 us (eight copies: 46 -> 54 us, 31 -> 34 us).
+
+In all, color_micro's update at N = 30 / 90 / 210 (medians of 3 alternating runs of main and this
+branch): kernel 83.3 / 162.5 / 324.5 -> 43.4 / 86.6 / 181.2 us, unweighted 50.1 / 113.1 / 205.4 ->
+27.8 / 64.9 / 120.0 us. Tried and dropped: prefetching 8 or 16 rows ahead, every row up front, or
+with hints T1/T2 (no better; the frame, cold in cache, still costs ~8-10 us of an update: perf puts
+the quantiser's remaining time on the prefetches and loads of the frame, memory-level parallelism
+rather than arithmetic); starting the greedy chain elsewhere (the smallest box, the most isolated,
+the most central) or restoring a central box's histogram for outliers (offline on the dumped
+clouds: no fewer pixels; a minimum spanning tree would count 13 % fewer at N = 30, 23 % at N =
+210, but with snapshots to restore and an O(N^2) tree). What is left at N = 30: the frame's
+memory wait, the box-to-box counting (~38.7k pixel updates per frame for 30 boxes, 4.8 of them
+counted afresh) and ~6-8 us of fixed cost per update (Python call, SIR step, ordering).
 
 The NumPy color PF (sigma = 0.2, seed 0) at N = 30 / 90 / 210: 0.64 / 1.36 / 2.75 CPU ms per
 frame, AUC occluded 0.439 / 0.454 / 0.473, clean 0.407 / 0.438 / 0.435. CSRT is the tracker to
@@ -915,7 +974,7 @@ def print_speed(counts: List[int], frames, segments) -> None:
             cpu = median(t[1] for t in times)
             cpu_times[name, n] = cpu
             ratio = f"{cpu_times[peer, n] / cpu:.1f}" if peer else "-"
-            rows.append([name, n, f"{1e3 * cpu:.2f}", f"{1e3 * median(t[0] for t in times):.2f}",
+            rows.append([name, n, f"{1e3 * cpu:.3f}", f"{1e3 * median(t[0] for t in times):.3f}",
                          ratio, cell(per_seed, ("occluded", "all"), 0),
                          cell(per_seed, ("clean", "all"), 0)])
     print("Time per frame against the number of particles (seed 0, every segment; the ratio is the "

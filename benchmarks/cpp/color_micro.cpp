@@ -2,7 +2,14 @@
 // stage, on real frames: PETS09-S2L1 person 15 from frame 1 (its MOTChallenge GT box), followed
 // for 150 frames, then the same frames' particle clouds scored again stage by stage. One thread,
 // its CPU time, medians over frames (microseconds per update). benchmarks/follow.py has the
-// figures and what they led to.
+// figures and what they led to. The stages score the clouds the filter held after each update,
+// i.e. resampled (copies of a box cost nothing), on a frame already in cache: they understate
+// the update's own quantising (its frame comes cold from memory) and scoring.
+//
+// AMD EPYC (Zen 5, AVX-512), loaded, medians of 3 alternating runs, main -> issue 11's second
+// speed session (benchmarks/follow.py): update at N = 30 / 90 / 210, kernel 83.3 / 162.5 / 324.5
+// -> 43.4 / 86.6 / 181.2 us, unweighted (kernel 0) 50.1 / 113.1 / 205.4 -> 27.8 / 64.9 / 120.0
+// us; at N = 30, kernel: quantise 15.8 -> 4.3 us (1.23 -> 0.33 ns/px), score 33.8 -> 22.0 us.
 //
 // Build against the library of a `make build` (same flags as the library) and run, on one line:
 //   g++ -std=c++17 -O3 -march=native -fno-trapping-math -fno-math-errno -Icpp/include
