@@ -33,6 +33,23 @@
 //   (-fPIC) normals went to 4.3: LaneRng::next was no longer inlined into fill_normal, as GCC may
 //   not inline a function another library could interpose. With -fno-semantic-interposition:
 //   normals 1.5, exp 0.9, SIR step 10.3-10.5 (double) and 8.1-8.5 (float).
+// 2026-11-28 (an AMD EPYC with AVX-512, family 26; 2 vCPUs, load average 7-14 from other builds;
+// ns per particle at N = 1e5): before, the float SIR step 6.0 (5.7-5.9 on the benchmark's own
+// measurements, whose weights are more uneven), the double step 7.0; perf of the float step:
+// resampling 24 % (its running maximum of the marks about half of that), the gather with the
+// propagation 17 %, weights 16 %, normals 16 %, likelihood 11 %. Changed, in this order:
+//   - the gather in one pass over the ancestors for all columns (the index read once per
+//     particle), and block buffers kept per thread instead of allocated per block;
+//   - the weights' exponentials in single precision for float states (vmath::exp(float));
+//   - the gather of ancestors within a window by AVX-512 permutation (smc/gather.hpp):
+//     the gather row below, by column 1.05, one pass 0.90, gather_block 0.49;
+//   - the running maximum of the marks in AVX-512 registers (reweight.cpp): measured on its own
+//     with systematic resampling of weights exp(-s x^2 / 2), x ~ N(0, 1), at ESS / N 0.87, 0.42,
+//     0.14 and 0.05: scalar 1.29, 1.25, 1.28, 1.08, vectorised 0.55, 0.55, 0.56, 0.56. (Writing
+//     each particle's index into four slots, overwritten by later particles, was as fast at ESS
+//     0.87 but took 1.9 at ESS 0.14: a branch for the longer runs mispredicts.)
+//   After: the float step 4.5 (4.7-4.8 on the benchmark's measurements), the double step 6.4
+//   (memory-bound: its 3.2 MB state arrays leave the 1 MB L2 cache; propagation alone 1.2).
 // Tried and dropped: prefetching the gather's ancestors (no gain: they are sorted and the
 // hardware prefetcher follows them); splitting LaneRng's 64-bit draws into 32-bit halves by
 // shifts instead of memcpy (1.2-1.4 ns per normal instead of 0.98, same output).
@@ -148,6 +165,49 @@ void layout(Eigen::Index n) {
               ns_per([&] { volatile double m = (xc * w)(0); (void)m; }, d));
 }
 
+// The gather of 4 float columns after systematic resampling (weights exp(2 N(0, 1)), as spread as
+// the range-bearing problem's): column by column, as the engine did until 2026-11-28; one pass
+// over the ancestors for all columns; smc::gather_block (one pass, and the AVX-512 permutation of
+// ancestors within a window).
+using FloatRows = Eigen::Matrix<float, Eigen::Dynamic, 4>;
+__attribute__((noinline)) void gather_by_column(const FloatRows& x, const std::int64_t* a,
+                                                FloatRows& y) {
+  for (Eigen::Index c = 0; c < 4; ++c) {
+    const float* from = x.col(c).data();
+    float* to = y.col(c).data();
+    for (Eigen::Index j = 0; j < x.rows(); ++j) to[j] = from[a[j]];
+  }
+}
+__attribute__((noinline)) void gather_one_pass(const FloatRows& x, const std::int64_t* a,
+                                               FloatRows& y) {
+  const float *x0 = x.col(0).data(), *x1 = x.col(1).data(), *x2 = x.col(2).data(),
+              *x3 = x.col(3).data();
+  float *y0 = y.col(0).data(), *y1 = y.col(1).data(), *y2 = y.col(2).data(), *y3 = y.col(3).data();
+  for (Eigen::Index j = 0; j < x.rows(); ++j) {
+    const std::int64_t k = a[j];
+    y0[j] = x0[k];
+    y1[j] = x1[k];
+    y2[j] = x2[k];
+    y3[j] = x3[k];
+  }
+}
+
+void gather(Eigen::Index n) {
+  const FloatRows x = FloatRows::Random(n, 4);
+  FloatRows y(n, 4);
+  core::Rng rng(2);
+  Eigen::VectorXd w(n);
+  for (Eigen::Index i = 0; i < n; ++i) w[i] = std::exp(2.0 * rng.normal());
+  w /= w.sum();
+  const auto a = core::resample(core::ResamplingScheme::Systematic, w, n, rng);
+  const double d = static_cast<double>(n);
+  std::printf("\ngather of 4 float columns, N = %ld, ns per particle: by column %.2f, one pass "
+              "%.2f, gather_block %.2f\n",
+              static_cast<long>(n), ns_per([&] { gather_by_column(x, a.data(), y); }, d),
+              ns_per([&] { gather_one_pass(x, a.data(), y); }, d),
+              ns_per([&] { smc::gather_block(x.data(), n, n, 4, a.data(), n, y.data(), n); }, d));
+}
+
 void floor_and_sir(Eigen::Index n) {
   const double d = static_cast<double>(n);
   core::Rng source(1);
@@ -192,5 +252,6 @@ void floor_and_sir(Eigen::Index n) {
 
 int main() {
   layout(100000);
+  gather(100000);
   floor_and_sir(100000);
 }

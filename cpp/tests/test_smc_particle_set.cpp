@@ -1,7 +1,9 @@
 // smc::ParticleSet and the reweighting of smc/reweight.hpp, against brute-force sums.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <set>
 #include <stdexcept>
@@ -247,4 +249,61 @@ TEST(SmcParticleSet, WeightUpdateWithoutLogWeightsRefusesToWriteThem) {
   EXPECT_THROW(update.commit(log_w, w, 1, true), std::logic_error);
   update.commit(log_w, w, 1, false);
   EXPECT_NEAR(w.sum(), 1.0, 1e-12);
+}
+
+namespace {
+
+// gather_block against an index-by-index copy, for ancestors of every kind: sorted as systematic
+// resampling leaves them (the permutation path), sorted with gaps wider than a window, shuffled
+// and descending (the scalar path), and windows that reach the last source row.
+template <typename T>
+void check_gather_block(const std::vector<std::int64_t>& ancestors, Eigen::Index src_rows,
+                        Eigen::Index cols) {
+  using Matrix = Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>;
+  Matrix src(src_rows, cols);
+  for (Eigen::Index i = 0; i < src.size(); ++i) src.data()[i] = static_cast<T>(i) + T(0.5);
+  const auto n = static_cast<Eigen::Index>(ancestors.size());
+  Matrix dst = Matrix::Constant(n, cols, T(-1));
+  smc::gather_block(src.data(), src_rows, src_rows, cols, ancestors.data(), n, dst.data(), n);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    for (Eigen::Index c = 0; c < cols; ++c) {
+      ASSERT_EQ(dst(j, c), src(ancestors[static_cast<std::size_t>(j)], c))
+          << "row " << j << " column " << c << " of " << cols;
+    }
+  }
+}
+
+}  // namespace
+
+TEST(SmcGather, MatchesAnIndexByIndexCopyForEveryKindOfAncestors) {
+  core::Rng rng(11);
+  const Eigen::Index rows = 300;
+  std::vector<std::vector<std::int64_t>> cases;
+  // Systematic resampling of random weights: sorted, runs of copies.
+  Eigen::VectorXd w(rows);
+  for (Eigen::Index i = 0; i < rows; ++i) w[i] = std::exp(2.0 * rng.normal());
+  w /= w.sum();
+  std::vector<std::int64_t> sorted(rows);
+  core::resample(core::ResamplingScheme::Systematic, w, rows, rng, sorted.data());
+  cases.push_back(sorted);
+  // Sorted with gaps of 3 (16 consecutive ancestors span 45 rows: wider than a window).
+  std::vector<std::int64_t> gaps;
+  for (std::int64_t k = 0; k < rows; k += 3) gaps.push_back(k);
+  cases.push_back(gaps);
+  // Shuffled, descending, and the last rows only (a window that ends at the last source row).
+  std::vector<std::int64_t> shuffled(sorted.rbegin(), sorted.rend());
+  cases.push_back(shuffled);
+  std::shuffle(shuffled.begin(), shuffled.end(), rng);
+  cases.push_back(shuffled);
+  cases.push_back(std::vector<std::int64_t>(40, rows - 1));
+  std::vector<std::int64_t> tail;
+  for (std::int64_t k = rows - 32; k < rows; ++k) tail.insert(tail.end(), 2, k);
+  cases.push_back(tail);
+  for (const auto& ancestors : cases) {
+    for (Eigen::Index cols : {1, 2, 3, 4, 5, 7}) {
+      check_gather_block<float>(ancestors, rows, cols);
+      check_gather_block<double>(ancestors, rows, cols);
+      check_gather_block<std::int64_t>(ancestors, rows, cols);
+    }
+  }
 }

@@ -101,6 +101,20 @@ TEST(SmcVmath, SinglePrecisionLogIsAccurate) {
   }
 }
 
+TEST(SmcVmath, SinglePrecisionExpIsAccurate) {
+  Rng rng(6);
+  for (int i = 0; i < 200000; ++i) {
+    const auto x = static_cast<float>(rng.uniform(-87.3, 88.3));
+    const double expected = std::exp(static_cast<double>(x));
+    EXPECT_LE(std::fabs(vmath::exp(x) - expected), 1e-7 * expected) << x;
+  }
+  EXPECT_EQ(vmath::exp(0.0f), 1.0f);
+  EXPECT_EQ(vmath::exp(-std::numeric_limits<float>::infinity()), 0.0f);
+  EXPECT_EQ(vmath::exp(-90.0f), 0.0f);  // below 2^-126: flushed to zero
+  EXPECT_EQ(vmath::exp(89.0f), std::numeric_limits<float>::infinity());
+  EXPECT_TRUE(std::isnan(vmath::exp(std::nanf(""))));
+}
+
 TEST(SmcLaneRng, IsDefinedByItsSourceAndItsLanesDiffer) {
   Rng a(9, 3), b(9, 3);
   LaneRng la(a), lb(b);

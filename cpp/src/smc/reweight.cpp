@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <algorithm>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -11,17 +12,49 @@
 #include "vtrack/core/vmath.hpp"
 #include "vtrack/smc/blocks.hpp"
 
+#if defined(__AVX512F__)
+#include <immintrin.h>
+#endif
+
 namespace vtrack::smc {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+// a[j] <- max(start, a[begin], ..., a[j]) for j in [begin, end), for a[j] >= 0. The scalar loop's
+// chain is a compare and a conditional move per element; with AVX-512 eight elements take a
+// prefix maximum within the register (three shifted maxima) and then the carry of the eight
+// before: 0.55 against 1.1-1.3 ns per particle of a systematic resampling, whatever the spread of
+// the weights (smc_micro.cpp's header).
+void running_max(std::int64_t* a, std::int64_t begin, std::int64_t end, std::int64_t start) {
+  std::int64_t j = begin;
+#if defined(__AVX512F__)
+  const __m512i zero = _mm512_setzero_si512();
+  __m512i carry = _mm512_set1_epi64(start);
+  for (; j + 8 <= end; j += 8) {
+    __m512i x = _mm512_loadu_si512(a + j);
+    x = _mm512_max_epi64(x, _mm512_alignr_epi64(x, zero, 7));  // with x[i - 1]
+    x = _mm512_max_epi64(x, _mm512_alignr_epi64(x, zero, 6));  // with x[i - 2], x[i - 3]
+    x = _mm512_max_epi64(x, _mm512_alignr_epi64(x, zero, 4));  // with x[i - 4] ... x[i - 7]
+    x = _mm512_max_epi64(x, carry);
+    _mm512_storeu_si512(a + j, x);
+    carry = _mm512_permutexvar_epi64(_mm512_set1_epi64(7), x);  // the last, in every lane
+  }
+  start = _mm_cvtsi128_si64(_mm512_castsi512_si128(carry));
+#endif
+  for (; j < end; ++j) {
+    start = std::max(start, a[j]);
+    a[j] = start;
+  }
+}
+
 }  // namespace
 
-void WeightUpdate::begin(Eigen::Index n, Eigen::Index d, bool keep_log) {
+void WeightUpdate::begin(Eigen::Index n, Eigen::Index d, bool keep_log, bool single_exp) {
   n_ = n;
   d_ = d;
   keep_log_ = keep_log;
+  single_exp_ = single_exp;
   if (keep_log_) updated_.resize(n);
   scaled_.resize(n);
   blocks_.assign(static_cast<std::size_t>(block_count(n)), BlockSums{-kInf, 0.0, 0.0, -1, 0});
@@ -96,10 +129,16 @@ bool WeightUpdate::weigh(Eigen::Index b, const double* log_w, const double* log_
   }
   while (first + 1 < n && t[first] != s.max) ++first;
   s.argmax = r.begin + first;
-  // exp(t - max): zero everywhere when the whole block is -inf. Eigen's sums are vectorised with a
-  // fixed order, so they are reproducible.
+  // exp(t - max) and its sums: zero everywhere when the whole block is -inf.
   const double shift = s.max == -kInf ? 0.0 : s.max;
-  for (Eigen::Index i = 0; i < n; ++i) e[i] = core::vmath::exp(t[i] - shift);
+  if (single_exp_) {
+    for (Eigen::Index i = 0; i < n; ++i) {
+      e[i] = core::vmath::exp(static_cast<float>(t[i] - shift));
+    }
+  } else {
+    for (Eigen::Index i = 0; i < n; ++i) e[i] = core::vmath::exp(t[i] - shift);
+  }
+  // Eigen's sums are vectorised with a fixed order, so they are reproducible.
   s.sum = ev.sum();
   s.sum_sq = ev.square().sum();
   return true;
@@ -203,37 +242,39 @@ void WeightUpdate::resample_systematic(std::size_t count, double offset,
         cum[k * q + j] = run[k];
       }
     }
+    // The first slot past each particle's cumulative weight, c_i. As an integer from the exact
+    // double through its bit pattern (c + 2^52 holds c in its low bits), which vectorises where
+    // a double-to-int64 conversion does not (AVX2).
+    alignas(64) std::int64_t stop[kBlockSize];
     double base = 0.0;
     for (int k = 0; k < 4; ++k) {
-      // The first slot past each particle's cumulative weight, as an exact double (vectorises).
       const double p0 = prefix[bi];
       const double f = scale_[bi];
       const double last = static_cast<double>(end);
-      double* c = cum + k * q;
+      const double* c = cum + k * q;
+      std::int64_t* s = stop + k * q;
       for (Eigen::Index j = 0; j < len[k]; ++j) {
         const double p = std::ceil((p0 + f * (base + c[j])) * points_per_weight - offset);
-        c[j] = std::min(last, std::max(0.0, p));
+        const double slot = std::min(last, std::max(0.0, p));
+        s[j] = static_cast<std::int64_t>(core::vmath::bits(slot + 0x1.0p52) -
+                                         core::vmath::bits(0x1.0p52));
       }
       base += run[k];
     }
     // The marks of core/resampling.cpp's systematic(): particle i writes its index into the first
-    // slot it would own; a running maximum then fills the runs. Marks past the block's last
-    // filled slot go to `dummy`.
+    // slot it would own, c_{i-1}; a running maximum then fills the runs. Marks past the block's
+    // last filled slot go to `dummy`.
     std::fill(ancestors + begin, ancestors + end, std::int64_t{0});
     std::int64_t dummy = 0;
     std::int64_t filled = begin;
     for (Eigen::Index i = 0; i < n; ++i) {
       *(filled < end ? ancestors + filled : &dummy) = r.begin + i;
-      filled = static_cast<std::int64_t>(cum[i]);
+      filled = stop[i];
     }
+    running_max(ancestors, begin, filled, r.begin);
     Eigen::Index last_positive = n - 1;
     while (last_positive > 0 && !(e[last_positive] > 0.0)) --last_positive;
     last_positive += r.begin;
-    std::int64_t current = r.begin;
-    for (std::int64_t j = begin; j < filled; ++j) {
-      current = std::max(current, ancestors[j]);
-      ancestors[j] = current;
-    }
     // Round-off between the running sum and the block total: the rest to the last positive one.
     for (std::int64_t j = filled; j < end; ++j) ancestors[j] = last_positive;
   });

@@ -7,6 +7,7 @@
 // (BlockStreams), and every reduction over particles is summed per block, then over blocks in
 // block order. So the result does not depend on how many threads run the blocks: bit-identical for
 // any `threads`, as the issue asks.
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -49,6 +50,18 @@ void for_blocks(Eigen::Index blocks, int threads, const Body& body) {
         for (int b = range.start; b < range.end; ++b) body(b);
       },
       threads == 0 ? -1.0 : static_cast<double>(threads));
+}
+
+// A per-thread scratch array of at least `size` elements that keeps its memory from block to block
+// and step to step (a block's temporary buffers otherwise cost an allocation each, ~3 % of a SIR
+// step at N = 1e5). Tag tells apart the buffers a block uses at the same time; the contents are
+// undefined on return.
+enum class Scratch { Noise, Normals, Gathered, LogLikelihood };
+template <typename T, Scratch Tag>
+T* scratch(std::size_t size) {
+  thread_local std::vector<T> buffer;
+  if (buffer.size() < size) buffer.resize(size);
+  return buffer.data();
 }
 
 // One vectorised generator per block. Block b's generator takes lanes from consecutive jumps of

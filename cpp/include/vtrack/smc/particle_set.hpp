@@ -26,6 +26,7 @@
 #include "vtrack/core/resampling.hpp"
 #include "vtrack/core/weights.hpp"
 #include "vtrack/smc/blocks.hpp"
+#include "vtrack/smc/gather.hpp"
 #include "vtrack/smc/reweight.hpp"
 
 namespace vtrack::smc {
@@ -37,14 +38,10 @@ void gather_rows(const Matrix& src, const std::int64_t* ancestors, Eigen::Index 
                  int threads = 1) {
   static_assert(!Matrix::IsRowMajor, "particle arrays are column-major, one particle per row");
   dst.resize(count, src.cols());
-  const Eigen::Index src_rows = src.rows();
   for_blocks(block_count(count), threads, [&](Eigen::Index b) {
     const BlockRange r = block_range(b, count);
-    for (Eigen::Index c = 0; c < src.cols(); ++c) {
-      const auto* from = src.data() + c * src_rows;
-      auto* to = dst.data() + c * count;
-      for (Eigen::Index j = r.begin; j < r.end; ++j) to[j] = from[ancestors[j]];
-    }
+    gather_block(src.data(), src.rows(), src.rows(), src.cols(), ancestors + r.begin, r.size(),
+                 dst.data() + r.begin, count);
   });
 }
 

@@ -34,8 +34,11 @@ class WeightUpdate {
  public:
   // n particles; with d > 0 the blocks also sum their weighted states (for mean()). Without
   // keep_log the updated log weights are not stored (a filter that resamples whatever the result
-  // saves a pass over memory): commit() then writes only the linear weights.
-  void begin(Eigen::Index n, Eigen::Index d = 0, bool keep_log = true);
+  // saves a pass over memory): commit() then writes only the linear weights. With single_exp the
+  // exponentials exp(t_i - max) are taken in single precision (relative error 1e-7, zero below
+  // e^-87.3), for a filter whose states are single precision anyway; weights, sums and the log
+  // normaliser stay double.
+  void begin(Eigen::Index n, Eigen::Index d = 0, bool keep_log = true, bool single_exp = false);
   // For the particles of block b: t_i = log_w_i + log_lik_i, exp(t_i - max_b t) and the block's
   // sums; with `states` (the block's n_b x d rows) also sum_i exp(t_i - max_b t) x_i. log_w and
   // log_lik point at the block's first particle; log_w = nullptr means every log_w_i is
@@ -84,6 +87,7 @@ class WeightUpdate {
   Eigen::Index n_ = 0;
   Eigen::Index d_ = 0;
   bool keep_log_ = true;
+  bool single_exp_ = false;
   Eigen::VectorXd updated_;  // t (only with keep_log)
   Eigen::VectorXd scaled_;   // exp(t - block max)
   std::vector<BlockSums> blocks_;

@@ -20,8 +20,9 @@
 //
 // Precision: Scalar is the type of the states (double, or float for large particle sets: half
 // the memory traffic and twice the vector width in propagation, gather and likelihood; the
-// weights, their sums, the estimates and the log evidence stay in double). The random draws are
-// the same for both, so a float filter follows its double twin to within float round-off.
+// weights' exponentials in float too, but the weights, their sums, the estimates and the log
+// evidence stay in double). The random draws are the same for both, so a float filter follows
+// its double twin to within float round-off.
 //
 // Measurement conventions: `prior` is the density of x_0, one step before the first measurement
 // (as a Kalman filter's), so every step(z) first propagates. A NaN in z is an InvalidArgument
@@ -89,6 +90,8 @@ class Sir {
                 "whole-array (Python) models take double arrays");
   // Resampled states are gathered lazily, block by block, by the next propagation.
   static constexpr bool kLazyGather = kBootstrap && !kWholeMotion;
+  // A block's rows of a particle array, or a block-sized buffer, as a matrix.
+  using BlockMatrix = Eigen::Map<States, 0, Eigen::OuterStride<>>;
 
  public:
   Sir(Motion motion, Observation observation, const core::Gaussian& prior,
@@ -205,11 +208,11 @@ class Sir {
         return;
       }
     }
-    Eigen::VectorXf normals(n * nr);
-    streams_[b].fill_normal(normals.data(), count);
+    float* normals = scratch<float, Scratch::Normals>(count);
+    streams_[b].fill_normal(normals, count);
     for (int k = 0; k < nr; ++k) {
       Eigen::Map<Eigen::Matrix<Scalar, Eigen::Dynamic, 1>>(out + k * stride, n) =
-          normals.segment(k * n, n).template cast<Scalar>();
+          Eigen::Map<const Eigen::VectorXf>(normals + k * n, n).template cast<Scalar>();
     }
   }
 
@@ -221,30 +224,26 @@ class Sir {
     const BlockRange r = block_range(b, set_.size());
     const Eigen::Index n = r.size();
     const int nr = noise_dim();
-    States local_eps;
     Scalar* eps_data;
     Eigen::Index stride;
     if (keep_noise()) {
       eps_data = eps_.data() + r.begin;
       stride = eps_.rows();
     } else {
-      local_eps.resize(n, nr);
-      eps_data = local_eps.data();
+      eps_data = scratch<Scalar, Scratch::Noise>(static_cast<std::size_t>(n * nr));
       stride = n;
     }
     draw_noise(b, n, nr, eps_data, stride);
-    const View eps(Eigen::Map<const States, 0, Eigen::OuterStride<>>(eps_data, n, nr,
-                                                                     Eigen::OuterStride<>(stride)));
-    States gathered;
+    const View eps(BlockMatrix(eps_data, n, nr, Eigen::OuterStride<>(stride)));
+    const Eigen::Index d = set_.dim();
+    Scalar* gathered = nullptr;
     if (pending_) {
-      gathered.resize(n, set_.dim());
-      const std::int64_t* a = set_.ancestors().data() + r.begin;
-      for (Eigen::Index c = 0; c < set_.dim(); ++c) {
-        const Scalar* from = set_.states().col(c).data();
-        for (Eigen::Index i = 0; i < n; ++i) gathered(i, c) = from[a[i]];
-      }
+      gathered = scratch<Scalar, Scratch::Gathered>(static_cast<std::size_t>(n * d));
+      gather_block(set_.states().data(), set_.size(), set_.size(), d,
+                   set_.ancestors().data() + r.begin, n, gathered, n);
     }
-    const View prev = pending_ ? View(gathered) : View(set_.states().middleRows(r.begin, n));
+    const View prev = pending_ ? View(BlockMatrix(gathered, n, d, Eigen::OuterStride<>(n)))
+                               : View(set_.states().middleRows(r.begin, n));
     if constexpr (kBootstrap) {
       (void)z;
       motion_.propagate(prev, eps, next_.middleRows(r.begin, n));
@@ -264,12 +263,9 @@ class Sir {
   void weigh_block(Eigen::Index b, const Eigen::VectorXd& z) {
     const BlockRange r = block_range(b, set_.size());
     const View x(next_.middleRows(r.begin, r.size()));
-    Eigen::VectorXd local;
-    double* ll = loglik_.data() + r.begin;
-    if (!keep_loglik()) {
-      local.resize(r.size());
-      ll = local.data();
-    }
+    double* ll = keep_loglik() ? loglik_.data() + r.begin
+                               : scratch<double, Scratch::LogLikelihood>(
+                                     static_cast<std::size_t>(r.size()));
     if constexpr (!kWholeObservation) observation_.log_likelihood(x, z, ll);
     if constexpr (!kBootstrap) {
       Eigen::VectorXd correction(r.size());  // log p(x|x_prev) - log q(x|x_prev, z), eq. 5
@@ -297,7 +293,7 @@ class Sir {
     const bool always_resample = params_.ess_threshold >= 1.0;
     if (z) {
       if (keep_loglik()) loglik_.resize(n);
-      update_.begin(n, motion_.dim(), !always_resample);
+      update_.begin(n, motion_.dim(), !always_resample, std::is_same_v<Scalar, float>);
     }
     const int threads = params_.threads;
     if constexpr (!kWholeMotion && !kWholeObservation) {
@@ -389,7 +385,6 @@ class Sir {
   // One block's proposals: eps', x' = propagate(x^anc, eps'), log p(z|x') and the uniforms of the
   // accept test, as block-local buffers (the fused path) or as views into whole arrays (a
   // whole-array observation model evaluates all proposals at once).
-  using BlockMatrix = Eigen::Map<States, 0, Eigen::OuterStride<>>;
   struct Proposals {
     BlockMatrix eps, x;
     Eigen::Map<Eigen::VectorXd> ll, u;
