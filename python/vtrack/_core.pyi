@@ -452,6 +452,7 @@ class ReclusteringSirTracker:
         keep_fraction: float = 0.3,
         merge_distance: float = 1.2,
         merge_size: float = 1.3,
+        merge_velocity: float = 0.08,
         max_misses: int = 3,
         height_mean: float = 0.0,
         size_aspect: float = 0.35,
