@@ -63,7 +63,7 @@ rate and cap, ranking "murty" (exact) or "gibbs" (Vo, Vo & Hoang's sampler, seed
 densities "gaussian" (Kalman; the default) or "particles" (n_particles per track, resampled
 when N_eff < resample_threshold n_particles, regularised with regularise; the switching model's
 options depth_for_births, mask_detections, mask_depth_margin, occlusion_margin,
-occluded_detection_probability), and
+track_occluders, occluded_detection_probability), and
 the reporting options confirm_frames, lost_memory, relabel_overlap.
 
 step() returns vtrack.Tracks: ids 1, 2, ... in the order labels are first reported, scores =

@@ -195,7 +195,8 @@ TEST(ParticleGlmb, DetectionMaskKeepsTheSurfaceInFrontOfTheDetection) {
     pp.mask_depth_margin = margin;
     filters::ParticleTracks tracks(pp, 7, motion3(), observation3(), model);
     tracks.set_depth(&depth, b);
-    auto c = tracks.candidate(tracks.birth(at_a), observation3(), false);
+    auto c = tracks.candidate(tracks.birth(at_a), observation3(), filters::TrackLabel{1, 0},
+                              false);
     cv::Mat masked = depth.clone();
     cv::Mat blank;
     cv::compare(masked(rect_b), b.z() - margin, blank, cv::CMP_GE);
@@ -215,4 +216,43 @@ TEST(ParticleGlmb, DetectionMaskKeepsTheSurfaceInFrontOfTheDetection) {
   // A's own pixels are evidence for A only when they are kept.
   EXPECT_GT(kept.mean(), blanked.mean() + 1.0);
   EXPECT_GT(kept.mean(), 0.0);
+}
+
+TEST(ParticleGlmb, ReportedTracksHideWhatIsBehindThemFromUnreportedTracks) {
+  // A person A at D = 2 m, missed (no detection), is a reported track. A candidate 0.5 m behind
+  // A, on A's pixels, scores them as its own under eq. (4) (each pixel votes for any state less
+  // than twice its depth away). With track_occluders a birth there (outside the report) finds
+  // its whole footprint hidden by A's and scores 0, while the reported track itself keeps eq. (4)
+  // as without the option. Expected scores: DepthLikelihood::log_ratio on the image without any
+  // occluder, at the same particles.
+  const auto model = depth_model();
+  const Eigen::Vector3d a(0.0, 0.6, 2.0);
+  cv::Mat depth = cv::Mat::zeros(120, 160, CV_32F);
+  const image::Rect ra = model.footprint(a.x(), a.y(), a.z());
+  depth(cv::Rect(ra.x, ra.y, ra.width, ra.height)).setTo(2.0f);
+  Eigen::VectorXd mean(6);
+  mean << a.x(), 0.0, a.y(), 0.0, a.z() + 0.5, 0.0;
+  const models::GaussianDensity behind{mean, Eigen::VectorXd::Constant(6, 1e-6).asDiagonal()};
+  const filters::TrackLabel label_a{1, 0}, newborn{5, 0};
+  const std::vector<filters::ParticleTracks::ReportedTrack> reported{{label_a, a}};
+  auto score = [&](bool track_occluders, const filters::TrackLabel& label, bool is_birth,
+                   Eigen::VectorXd& expected) {
+    ParticleParams pp;
+    pp.n_particles = 100;
+    pp.track_occluders = track_occluders;
+    filters::ParticleTracks tracks(pp, 3, motion3(), observation3(), model);
+    tracks.set_depth(&depth, Eigen::MatrixXd(3, 0), reported);
+    auto c = tracks.candidate(tracks.birth(behind), observation3(), label, is_birth);
+    expected.resize(c.predicted_z.cols());
+    model.log_ratio(model.frame(depth), c.predicted_z, expected);
+    return c.depth_log_ratio;
+  };
+  Eigen::VectorXd unhidden;
+  const Eigen::VectorXd birth_before = score(false, newborn, true, unhidden);
+  EXPECT_LT((birth_before - unhidden).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_GT(birth_before.minCoeff(), 1.0);  // A's pixels support the state behind A
+  const Eigen::VectorXd birth_after = score(true, newborn, true, unhidden);
+  EXPECT_LT(birth_after.cwiseAbs().maxCoeff(), 1e-12);  // all hidden: no evidence either way
+  const Eigen::VectorXd track_after = score(true, label_a, false, unhidden);
+  EXPECT_LT((track_after - unhidden).cwiseAbs().maxCoeff(), 1e-9);
 }

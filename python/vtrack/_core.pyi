@@ -280,6 +280,7 @@ class GlmbTracker:
         mask_detections: bool = True,
         occlusion_margin: float = 0.3,
         mask_depth_margin: float = 0.3,
+        track_occluders: bool = False,
         occluded_detection_probability: bool = False,
         confirm_frames: int = 1,
         lost_memory: int = 0,

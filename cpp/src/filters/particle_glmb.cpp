@@ -1,5 +1,6 @@
 #include "vtrack/filters/particle_glmb.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -48,6 +49,7 @@ const core::ParameterTable<ParticleParams>& ParticleParams::table() {
           .add("mask_detections", &P::mask_detections)
           .add("occlusion_margin", &P::occlusion_margin)
           .add("mask_depth_margin", &P::mask_depth_margin)
+          .add("track_occluders", &P::track_occluders)
           .add("occluded_detection_probability", &P::occluded_detection_probability);
   return table;
 }
@@ -90,27 +92,38 @@ ParticleTracks::ParticleTracks(ParticleParams params, std::uint64_t seed,
 }
 
 void ParticleTracks::set_depth(const cv::Mat* depth,
-                               const Eigen::Ref<const Eigen::MatrixXd>& detections) {
+                               const Eigen::Ref<const Eigen::MatrixXd>& detections,
+                               const std::vector<ReportedTrack>& reported) {
   depth_frame_.reset();
+  reported_.clear();
   if (!depth) return;
   if (!depth_model_) throw InvalidArgument("depth given but the tracker has no depth model");
-  if (!params_.mask_detections || detections.cols() == 0) {
-    depth_frame_ = depth_model_->frame(*depth);
-    return;
-  }
-  cv::Mat masked = depth->clone();
+  const bool ordered = std::isfinite(params_.occlusion_margin);
   std::vector<models::Occluder> occluders;
-  for (Eigen::Index j = 0; j < detections.cols(); ++j) {
-    if (detections.rows() != 3) break;  // the filter reports the shape error
-    const image::Rect r = depth_model_->footprint(detections(0, j), detections(1, j), detections(2, j));
-    if (r.width > 0 && r.height > 0 && r.x + r.width <= masked.cols && r.y + r.height <= masked.rows) {
+  cv::Mat masked = *depth;
+  if (params_.mask_detections && detections.cols() > 0 && detections.rows() == 3) {
+    masked = depth->clone();
+    for (Eigen::Index j = 0; j < detections.cols(); ++j) {
+      const double D = detections(2, j);
+      const image::Rect r = depth_model_->footprint(detections(0, j), detections(1, j), D);
+      if (r.width == 0 || r.height == 0 || r.x + r.width > masked.cols ||
+          r.y + r.height > masked.rows) {
+        continue;  // (an image of the wrong size: frame() reports it)
+      }
       // Only the pixels the detection can explain: at its depth or behind it. A nearer surface
       // in T(z_j) is in front of the detection (a missed person passing before it) and keeps
       // its depth (mask_depth_margin; +inf blanks the whole footprint).
       cv::Mat footprint = masked(cv::Rect(r.x, r.y, r.width, r.height));
-      footprint.setTo(0.0, footprint >= detections(2, j) - params_.mask_depth_margin);
-      if (std::isfinite(params_.occlusion_margin)) {
-        occluders.push_back({r, detections(2, j) + params_.occlusion_margin});
+      footprint.setTo(0.0, footprint >= D - params_.mask_depth_margin);
+      if (ordered) occluders.push_back({r, D + params_.occlusion_margin});
+    }
+  }
+  if (ordered && params_.track_occluders) {
+    for (const ReportedTrack& t : reported) {
+      reported_.push_back(t.label);
+      const image::Rect r = depth_model_->footprint(t.position.x(), t.position.y(), t.position.z());
+      if (r.width > 0 && r.height > 0) {
+        occluders.push_back({r, t.position.z() + params_.occlusion_margin, true});
       }
     }
   }
@@ -143,7 +156,8 @@ ParticleDensity ParticleTracks::birth(const models::GaussianDensity& density) {
 }
 
 ParticleTracks::Candidate ParticleTracks::candidate(
-    Density predicted, const models::LinearGaussianObservation& observation, bool is_birth) {
+    Density predicted, const models::LinearGaussianObservation& observation,
+    const TrackLabel& label, bool is_birth) {
   Eigen::MatrixXd z = observation.H * predicted.states().transpose();
   // The Gaussian moment match only gates (it is never used for weights); its covariance is
   // positive definite because Sigma is.
@@ -152,7 +166,9 @@ ParticleTracks::Candidate ParticleTracks::candidate(
   if (depth_frame_ && (!is_birth || params_.depth_for_births)) {
     c.depth_log_ratio.resize(c.predicted.size());
     Eigen::VectorXd visible;
-    depth_model_->log_ratio(*depth_frame_, c.predicted_z, c.depth_log_ratio, &visible);
+    const bool reported = !is_birth && std::find(reported_.begin(), reported_.end(), label) !=
+                                           reported_.end();
+    depth_model_->log_ratio(*depth_frame_, c.predicted_z, c.depth_log_ratio, &visible, reported);
     if (params_.occluded_detection_probability && visible.minCoeff() < 1.0) {
       // Eq. (8) with p_D(x) = p_D v(x): the detected branch gains log v(x) per particle, the
       // missed branch log((1 - p_D v(x)) / (1 - p_D)) (the engine adds log(1 - p_D)).
@@ -290,7 +306,15 @@ ParticleGlmbFilter::ParticleGlmbFilter(models::LinearGaussianMotion motion,
 
 void ParticleGlmbFilter::step(const Eigen::Ref<const Eigen::MatrixXd>& detections,
                               const cv::Mat* depth, const ScanInput& input) {
-  tracks_model_.set_depth(depth, detections);
+  // The previous report, predicted to this scan: the tracks that may occlude newer ones.
+  std::vector<ParticleTracks::ReportedTrack> reported;
+  if (depth && particle_params().track_occluders) {
+    for (const GlmbEstimate& e : estimates()) {
+      const Eigen::VectorXd predicted = motion().F * e.mean;
+      reported.push_back({e.label, {predicted[0], predicted[2], predicted[4]}});
+    }
+  }
+  tracks_model_.set_depth(depth, detections, reported);
   GlmbFilter<ParticleTracks>::step(detections, input);
   tracks_model_.set_depth(nullptr, detections);
 }

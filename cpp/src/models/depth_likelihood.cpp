@@ -105,7 +105,8 @@ image::Rect DepthLikelihood::footprint(double X, double Y, double D) const {
 
 void DepthLikelihood::log_ratio(const DepthFrame& frame,
                                 const Eigen::Ref<const Eigen::Matrix3Xd>& positions,
-                                Eigen::Ref<Eigen::VectorXd> out, Eigen::VectorXd* visible) const {
+                                Eigen::Ref<Eigen::VectorXd> out, Eigen::VectorXd* visible,
+                                bool viewer_reported) const {
   if (out.size() != positions.cols()) {
     throw InvalidArgument("log_ratio: out must have one entry per position");
   }
@@ -126,7 +127,7 @@ void DepthLikelihood::log_ratio(const DepthFrame& frame,
     }
     double s1 = frame.sum.sum(r), s2 = frame.sum_squares.sum(r);
     for (const Occluder& o : frame.occluders) {
-      if (!(D > o.hides_beyond)) continue;
+      if (!(D > o.hides_beyond) || (o.tracked && viewer_reported)) continue;
       const int x0 = std::max(r.x, o.rect.x), x1 = std::min(r.x + r.width, o.rect.x + o.rect.width);
       const int y0 = std::max(r.y, o.rect.y), y1 = std::min(r.y + r.height, o.rect.y + o.rect.height);
       if (x1 <= x0 || y1 <= y0) continue;

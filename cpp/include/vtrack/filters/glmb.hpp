@@ -296,7 +296,7 @@ struct GaussianTracks {
   }
   Density birth(const models::GaussianDensity& density) { return density; }
   Candidate candidate(Density predicted, const models::LinearGaussianObservation& observation,
-                      bool /*is_birth*/) {
+                      const TrackLabel& /*label*/, bool /*is_birth*/) {
     models::KalmanInnovation innovation(predicted, observation);
     return {std::move(predicted), std::move(innovation)};
   }
@@ -354,6 +354,7 @@ class GlmbFilter {
   int time() const { return time_; }
   Eigen::Index z_dim() const { return observation_.H.rows(); }
   const GlmbParams& params() const { return params_; }
+  const models::LinearGaussianMotion& motion() const { return motion_; }
 
  protected:
   Tracks tracks_model_;

@@ -152,7 +152,8 @@ typename GlmbFilter<Tracks>::ScanFactors GlmbFilter<Tracks>::score_candidates(
     const double miss = o + (1.0 - o) * (1.0 - p_d);
     f.missed_undetectable[r] = miss > 0.0 ? o / miss : 0.0;
     f.missed_detectable[r] = is_birth || !detectable ? -1.0 : 1.0 - f.missed_undetectable[r];
-    f.candidates.push_back(tracks_model_.candidate(std::move(predicted), observation_, is_birth));
+    f.candidates.push_back(tracks_model_.candidate(std::move(predicted), observation_,
+                                                   f.labels.back(), is_birth));
     f.log_pd[r] = std::log(p_d);
     f.log_exists[r] = std::log(p_exist);
     f.log_absent[r] = std::log1p(-p_exist);

@@ -121,11 +121,14 @@ struct DepthLikelihoodParams {
 void validate(const DepthLikelihoodParams& params);
 
 // A region of the image known to be covered by a surface at some depth (the footprint of a
-// detected person): a target farther than `hides_beyond` is hidden there, so those pixels of its
-// T(x) say nothing about it (see DepthLikelihood::log_ratio).
+// detected person, or of a tracked one): a target farther than `hides_beyond` is hidden there, so
+// those pixels of its T(x) say nothing about it (see DepthLikelihood::log_ratio).
 struct Occluder {
   image::Rect rect;
   double hides_beyond = 0.0;  // metres: states with D > hides_beyond are occluded by rect
+  // A reported track's footprint rather than a detection's: it hides only the states of viewers
+  // that are not reported tracks themselves (log_ratio's viewer_reported false).
+  bool tracked = false;
 };
 
 // The two integral images eq. (4) needs for one depth image: of d and of d^2; and the occluders
@@ -153,9 +156,11 @@ class DepthLikelihood {
   // it predicts nothing about those pixels (their phi/varphi ratio is 1). Overlapping occluders
   // are not de-duplicated: the removed count is clamped to |T(x)| (and S1, S2 to >= 0).
   // visible (optional, resized to n): the fraction of T(x) that no occluder hides (1 for an
-  // empty footprint).
+  // empty footprint). viewer_reported: the positions are a reported track's, which the
+  // footprints of tracks (Occluder::tracked) do not hide.
   void log_ratio(const DepthFrame& frame, const Eigen::Ref<const Eigen::Matrix3Xd>& positions,
-                 Eigen::Ref<Eigen::VectorXd> out, Eigen::VectorXd* visible = nullptr) const;
+                 Eigen::Ref<Eigen::VectorXd> out, Eigen::VectorXd* visible = nullptr,
+                 bool viewer_reported = false) const;
 
  private:
   DepthLikelihoodParams params_;
