@@ -22,6 +22,8 @@ Rows:
   NumPy SIR (reference)      a vectorised NumPy SIR written for speed in this file (structured CV
                              update on four 1-D arrays, SFC64 normals, rotated-frame bearing residual
                              with one arctan2, O(N) systematic resampling by np.repeat)
+  NumPy SIR, float32         the reference with float32 states, normals and likelihood (float64
+                             weights), the peer of vtrack's float32 row
   NumPy SIR + FilterPy       the reference with filterpy.monte_carlo.systematic_resample
   particles (Chopin)         particles.SMC with a Bootstrap Feynman-Kac model, ESSrmin = 1
   Stone Soup                 ParticlePredictor + ParticleUpdater(SystematicResampler)
@@ -40,40 +42,29 @@ The machine's floor for this problem is the cost of the random numbers and expon
 vtrack's is in benchmarks/cpp/smc_micro.cpp (LaneRng normals + core::vmath::exp, and the SIR step
 split by stage), whose header holds the measured figures.
 
-Measured 2026-11-24 (2 vCPU VM shared with builds, load average 4-12, `--sizes 1000 10000 100000
---repeats 3 --clock cpu`; particle-steps/s, ratio to the NumPy reference, position RMSE in m):
+Measured 2026-11-28 (an AMD EPYC with AVX-512, 2 vCPUs shared with other agents' builds and
+benchmarks, load average 6-10; `--sizes 1000 10000 100000 --repeats 5 --clock cpu`; particle-steps/s,
+ratio to the NumPy reference, position RMSE in m):
 
-| N | vtrack SIR | Python obs. | Python models | NumPy ref. | particles | Stone Soup | floor |
-|---|---|---|---|---|---|---|---|
-| 1e3 | 44.9 M (7.96x) | 17.7 M | 7.4 M | 5.6 M | 1.3 M | 0.48 M | 23.8 M |
-| 1e4 | 49.2 M (4.72x) | 24.7 M | 9.4 M | 10.4 M | 3.5 M | 1.51 M | 25.4 M |
-| 1e5 | 40.0 M (3.74x) | 19.8 M | 6.6 M | 10.7 M | 3.9 M | 1.74 M | 25.1 M |
+| N | vtrack SIR | vtrack float32 | Python obs. | Python models | NumPy ref. | NumPy float32 | particles | Stone Soup | floor |
+|---|---|---|---|---|---|---|---|---|---|
+| 1e3 | 150.3 M (13.6x) | 174.5 M (15.8x) | 50.7 M | 14.0 M | 11.1 M | 11.2 M | 2.9 M | 0.69 M | 32.2 M |
+| 1e4 | 153.1 M (9.3x) | 203.2 M (12.3x) | 82.3 M | 15.6 M | 16.5 M | 18.0 M | 5.5 M | 2.1 M | 34.8 M |
+| 1e5 | 126.7 M (7.3x) | 181.4 M (10.5x) | 65.1 M | 15.2 M | 17.3 M | 18.9 M | 7.0 M | 2.9 M | 33.2 M |
 
-RMSE 2.13-2.25 m for every filter. Resample-move at 1e5: vtrack 17.1 M, NumPy 4.35 M, Stone Soup's
-MCMC regulariser 0.84 M (vtrack 20x Stone Soup). The issue's 10x-NumPy bar at 1e5 is not met:
-the NumPy reference runs at 43 % of NumPy's own floor (its normals and exponentials alone), and
-vtrack's SIR already runs 1.6x faster than that floor (vtrack's own floor per stage is measured by
-benchmarks/cpp/smc_micro.cpp).
-
-Measured again 2026-11-24 after fusing the systematic resampling into the weight update (branch
-sir-fused: the weights are never written out, no validation pass, equal weights written lazily,
-the cumulative sum in four chains; two state buffers instead of three), vtrack and NumPy rows
-only, load average 9-14 on the 2 vCPUs, `--repeats 5 --clock cpu` through this file's functions:
-
-| N | vtrack SIR | NumPy ref. | ratio | RMSE vtrack / NumPy |
-|---|---|---|---|---|
-| 1e3 | 46.9 M | 5.84 M | 8.03x | 2.16 / 2.25 |
-| 1e4 | 50.6 M | 9.67 M | 5.23x | 2.15 / 2.18 |
-| 1e5 | 41.2 M | 9.37 M | 4.40x | 2.14 / 2.14 |
-
-Resample-move at 1e5 in the same run: vtrack 13.4 M, Stone Soup's MCMC regulariser 0.69 M (19.5x;
-the 17.1 M / 20x above was measured at a lower load). The ancestors are the same as before the
-fusion on this problem (same estimates for the same seed). The C++ step at 1e5 went from ~25 to
-~22-23.5 ns per particle (smc_micro.cpp). The 10x bar is still not met, and the rest of the gap is
-mostly the machine's floor: 10x NumPy is ~94-107 M/s, 9.3-10.7 ns per particle-step, while the
-4 normals (3.9-4.2 ns), the exp (0.5 ns) and the likelihood's sqrt + division + atan2 in double
-(~3 ns) alone take ~7.5-8 ns. That leaves ~2 ns for the propagation, weight sums, resampling,
-gather and the 3.2 MB of states per pass, which now take ~14 ns (see smc_micro.cpp's header).
+RMSE 2.12-2.25 m for every filter (2.14-2.15 at 1e5). Resample-move at 1e5: vtrack 48.7 M (float32
+77.1 M), NumPy 6.7 M, Stone Soup's MCMC regulariser 1.58 M: vtrack 31x Stone Soup (bar 10x: met).
+The issue's bar at 1e5, 10x the NumPy reference at the same RMSE: met by the float32 filter
+(10.5x; 9.6x against the NumPy filter in float32 too, the like-for-like comparison), not by the
+double one (7.3x). At N = 1e5 the double filter's states (3.2 MB per buffer) no longer fit in L2
+and its step is bound by memory traffic (propagation alone 1.2 ns per particle); the float
+filter's step is 4.7-4.8 ns per particle-step on these measurements (4.5 with smc_micro's fixed
+measurement), against a floor of 1.5 ns for the 4 normals and the exp alone (smc_micro.cpp). What
+the float step spends (perf, N = 1e5): normals 19 %, resampling 17 %, weights 15 %, likelihood
+14 %, gather 11 %, propagation 8 %, weighted sums 7 %; smc_micro.cpp's header has what changed
+since the last table (6.0 -> 4.5 ns). On 2026-11-24's machine (an AVX2 EPYC) the NumPy reference
+ran at 9-11 M/s and vtrack's double SIR at 41-50 M/s (4.4x at 1e5); the ratio depends on the
+machine, so compare within one run.
 """
 
 import argparse
@@ -129,15 +120,17 @@ def rmse(estimates, truth):
 # ---- the NumPy reference -------------------------------------------------------------------
 
 def numpy_log_likelihood(px, py, z):
-    # Bearing residual as the angle of p rotated by -z_bearing: one arctan2, already wrapped.
-    c, s = np.cos(z[1]), np.sin(z[1])
+    # Bearing residual as the angle of p rotated by -z_bearing: one arctan2, already wrapped. In
+    # the states' precision (the constants cast to it, so float32 states stay float32).
+    f = px.dtype.type
+    c, s = f(np.cos(z[1])), f(np.sin(z[1]))
     rng_res = np.sqrt(px * px + py * py)
-    rng_res -= z[0]
+    rng_res -= f(z[0])
     bearing_res = np.arctan2(c * py - s * px, c * px + s * py)
     ll = rng_res * rng_res
-    ll *= 1.0 / SIGMA_RANGE**2
-    ll += (bearing_res * (1.0 / SIGMA_BEARING)) ** 2
-    ll *= -0.5
+    ll *= f(1.0 / SIGMA_RANGE**2)
+    ll += (bearing_res * f(1.0 / SIGMA_BEARING)) ** 2
+    ll *= f(-0.5)
     return ll
 
 
@@ -153,22 +146,27 @@ def numpy_systematic(w, u, arange):
     return idx
 
 
-def numpy_sir(n, zs, seed, moves=0, resampler=None):
+def numpy_sir(n, zs, seed, moves=0, resampler=None, dtype=np.float64):
+    """dtype float32: states, normals, likelihood and exp in float32 (NumPy's float32 ziggurat
+    normals), weights and estimates in float64, as vtrack's dtype="float32"."""
     rng = np.random.Generator(np.random.SFC64(seed))
     x0 = X0[:, None] + rng.standard_normal((4, n)) * np.sqrt(np.diag(P0))[:, None]
-    px, vx, py, vy = (np.ascontiguousarray(r) for r in x0)
+    px, vx, py, vy = (np.ascontiguousarray(r, dtype=dtype) for r in x0)
+    t, la, lb, lc = (dtype(v) for v in (T, LA, LB, LC))
     arange = np.arange(n)
     est = np.empty((len(zs), 4))
     start = time.perf_counter(), time.process_time()
     for k, z in enumerate(zs):
-        e = rng.standard_normal((4, n))
+        e = rng.standard_normal((4, n), dtype=dtype)
         prev = (px, vx, py, vy)
-        px = px + T * vx + LA * e[0]
-        vx = vx + LB * e[0] + LC * e[1]
-        py = py + T * vy + LA * e[2]
-        vy = vy + LB * e[2] + LC * e[3]
+        px = px + t * vx + la * e[0]
+        vx = vx + lb * e[0] + lc * e[1]
+        py = py + t * vy + la * e[2]
+        vy = vy + lb * e[2] + lc * e[3]
         ll = numpy_log_likelihood(px, py, z)
         w = np.exp(ll - ll.max())
+        if w.dtype != np.float64:
+            w = w.astype(np.float64)
         w /= w.sum()
         est[k] = (w @ px, w @ vx, w @ py, w @ vy)
         if resampler is None:
@@ -380,7 +378,8 @@ def main():
            ("vtrack SIR, Python obs.", lambda n, z, s: vtrack_sir(n, z, s, python_obs=True)),
            ("vtrack SIR, Python models",
             lambda n, z, s: vtrack_sir(n, z, s, python_obs=True, python_motion=True)),
-           ("NumPy SIR (reference)", lambda n, z, s: numpy_sir(n, z, s))]
+           ("NumPy SIR (reference)", lambda n, z, s: numpy_sir(n, z, s)),
+           ("NumPy SIR, float32", lambda n, z, s: numpy_sir(n, z, s, dtype=np.float32))]
     if available("filterpy"):
         resampler = filterpy_resampler()
 

@@ -37,6 +37,31 @@ Without either the script says so and exits 0; a baseline whose package is missi
 
 RESULTS
 
+Identities (issue 12 part 2, 2026-11-28; MB with relabel_distance 3, the SIR with merge_velocity
+0.08: benchmarks/pets09_identity.py has the diagnosis and the sweeps over seeds). One run, seed 0,
+`--variants 768x576,0.5x,1.5x --methods "vtrack MB,vtrack SIR,MOG2 + ByteTrack,KNN + SORT"`,
+MOTA / IDF1 / HOTA on all frames, 1-397, 398-795:
+
+| variant | method           | all                   | 1-397                 | 398-795               |
+|---------|------------------|-----------------------|-----------------------|-----------------------|
+| 768x576 | vtrack MB        | 0.607 / 0.619 / 0.434 | 0.568 / 0.710 / 0.472 | 0.644 / 0.606 / 0.427 |
+| 768x576 | vtrack SIR       | 0.622 / 0.537 / 0.413 | 0.604 / 0.547 / 0.415 | 0.641 / 0.562 / 0.436 |
+| 768x576 | MOG2 + ByteTrack | 0.528 / 0.567 / 0.410 | 0.458 / 0.598 / 0.414 | 0.596 / 0.547 / 0.417 |
+| 768x576 | KNN + SORT       | 0.597 / 0.546 / 0.425 | 0.512 / 0.476 / 0.360 | 0.680 / 0.672 / 0.496 |
+| 0.5x    | vtrack MB        | 0.628 / 0.659 / 0.457 | 0.594 / 0.712 / 0.477 | 0.662 / 0.618 / 0.444 |
+| 0.5x    | vtrack SIR       | 0.603 / 0.545 / 0.404 | 0.543 / 0.657 / 0.454 | 0.662 / 0.508 / 0.396 |
+| 0.5x    | MOG2 + ByteTrack | 0.120 / 0.181 / 0.140 | 0.067 / 0.134 / 0.093 | 0.172 / 0.227 / 0.180 |
+| 0.5x    | KNN + SORT       | 0.101 / 0.175 / 0.149 | 0.050 / 0.108 / 0.093 | 0.151 / 0.246 / 0.194 |
+| 1.5x    | vtrack MB        | 0.571 / 0.637 / 0.433 | 0.497 / 0.670 / 0.443 | 0.644 / 0.612 / 0.432 |
+| 1.5x    | vtrack SIR       | 0.653 / 0.514 / 0.390 | 0.569 / 0.531 / 0.391 | 0.734 / 0.577 / 0.427 |
+| 1.5x    | MOG2 + ByteTrack | 0.449 / 0.450 / 0.357 | 0.327 / 0.435 / 0.338 | 0.569 / 0.523 / 0.399 |
+| 1.5x    | KNN + SORT       | 0.523 / 0.492 / 0.396 | 0.404 / 0.451 / 0.361 | 0.640 / 0.598 / 0.451 |
+
+MB beats the strongest baseline on MOTA and IDF1 on every variant; the SIR on every variant but
+IDF1 at 768 x 576 (0.537 against MOG2 + ByteTrack's 0.567). Before (2026-11-25, same command):
+MB 0.600 / 0.553, SIR 0.636 / 0.489 at 768 x 576; 0.604 / 0.596 and 0.582 / 0.409 at 0.5x;
+0.585 / 0.604 and 0.624 / 0.502 at 1.5x.
+
 Measured 2026-11-24 (seed 0; `python benchmarks/pets09.py --variants V`, one variant per run;
 the machine was shared, load ~10 on 2 cores, so the frames/s column is only a lower bound --
 benchmarks/track_video.py measures speed). Measured before the filter moved onto the SMC engine

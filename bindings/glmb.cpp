@@ -64,7 +64,7 @@ densities "gaussian" (Kalman; the default) or "particles" (n_particles per track
 when N_eff < resample_threshold n_particles, regularised with regularise; the switching model's
 options depth_for_births, mask_detections, mask_depth_margin, occlusion_margin,
 track_occluders, occluded_detection_probability), and
-the reporting options confirm_frames, lost_memory, relabel_overlap.
+the reporting options confirm_frames, lost_memory, relabel_overlap, relabel_distance.
 
 step() returns vtrack.Tracks: ids 1, 2, ... in the order labels are first reported, scores =
 each label's posterior existence probability, states and covariances = the track densities'

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #include <Eigen/Cholesky>
@@ -278,29 +279,40 @@ TEST(SmcSir, RejectsBadParameters) {
                InvalidArgument);
 }
 
-TEST(SmcSir, SameSeedSameParticlesAndAnyThreadCountTheSame) {
-  const Scenario s(8);
+// Same seed, same particles, for any thread count (the per-block streams and reductions).
+template <class Filter>
+void expect_same_for_any_thread_count(const Scenario& s, const char* what) {
   const models::LinearGaussianLikelihood obs(s.observation);
   for (const int moves : {0, 1}) {
     smc::SirParams p = params(10000, 8, 0.6, moves);
-    std::vector<Eigen::MatrixXd> finals;
+    std::vector<std::decay_t<decltype(Filter(s.motion, obs, s.prior(), p).particles().states())>>
+        finals;
     std::vector<double> evidences;
     for (const int threads : {1, 2, 0, 1}) {
       p.threads = threads;
-      CvSir filter(s.motion, obs, s.prior(), p);
+      Filter filter(s.motion, obs, s.prior(), p);
       for (const auto& z : s.z) filter.step(z);
       finals.push_back(filter.particles().states());
       evidences.push_back(filter.log_evidence());
     }
     for (std::size_t i = 1; i < finals.size(); ++i) {
-      EXPECT_EQ(finals[i], finals[0]) << "moves " << moves << " run " << i;
-      EXPECT_EQ(evidences[i], evidences[0]);
+      EXPECT_EQ(finals[i], finals[0]) << what << ", moves " << moves << " run " << i;
+      EXPECT_EQ(evidences[i], evidences[0]) << what;
     }
     p.seed = 9;
-    CvSir other(s.motion, obs, s.prior(), p);
+    Filter other(s.motion, obs, s.prior(), p);
     for (const auto& z : s.z) other.step(z);
-    EXPECT_NE(other.particles().states(), finals[0]);
+    EXPECT_NE(other.particles().states(), finals[0]) << what;
   }
+}
+
+using FloatCvSir = smc::Sir<models::ConstantVelocity, models::LinearGaussianLikelihood,
+                            smc::Bootstrap, float>;
+
+TEST(SmcSir, SameSeedSameParticlesAndAnyThreadCountTheSame) {
+  const Scenario s(8);
+  expect_same_for_any_thread_count<CvSir>(s, "double states");
+  expect_same_for_any_thread_count<FloatCvSir>(s, "float states");
 }
 
 using OptimalSir =
@@ -342,9 +354,6 @@ TEST(SmcSir, ResampleMoveKeepsThePosterior) {
   EXPECT_GT(filter.acceptance_rate(), 0.05);
   EXPECT_LT(filter.acceptance_rate(), 0.95);
 }
-
-using FloatCvSir = smc::Sir<models::ConstantVelocity, models::LinearGaussianLikelihood,
-                            smc::Bootstrap, float>;
 
 TEST(SmcSir, FloatStatesMatchTheKalmanFilterWithAndWithoutMoves) {
   for (const int moves : {0, 1}) {

@@ -285,6 +285,7 @@ class GlmbTracker:
         confirm_frames: int = 1,
         lost_memory: int = 0,
         relabel_overlap: float = 0.3,
+        relabel_distance: float = 0.0,
     ) -> None: ...
     def step(
         self, detections: ArrayLike, depth: Optional[npt.NDArray[Union[np.float32, np.float64]]] = None
@@ -406,6 +407,7 @@ class MultiBernoulliTracker:
         confirm_frames: int = 5,
         lost_memory: int = 30,
         relabel_overlap: float = 0.3,
+        relabel_distance: float = 3.0,
         velocity_smoothing: float = 0.3,
         box_scale_w: float = 1.673,
         box_scale_h: float = 1.706,
@@ -451,6 +453,7 @@ class ReclusteringSirTracker:
         keep_fraction: float = 0.3,
         merge_distance: float = 1.2,
         merge_size: float = 1.3,
+        merge_velocity: float = 0.08,
         max_misses: int = 3,
         height_mean: float = 0.0,
         size_aspect: float = 0.35,
@@ -467,6 +470,7 @@ class ReclusteringSirTracker:
         confirm_frames: int = 5,
         lost_memory: int = 30,
         relabel_overlap: float = 0.1,
+        relabel_distance: float = 0.0,
         box_scale_w: float = 1.06,
         box_scale_h: float = 0.93,
         box_offset_x: float = 0.01,
@@ -596,6 +600,7 @@ class BoxTracker:
         confirm_frames: int = 1,
         lost_memory: int = 0,
         relabel_overlap: float = 0.3,
+        relabel_distance: float = 0.0,
         ranking: Literal["murty", "gibbs"] = 'murty',
         seed: int = 0,
     ) -> None: ...

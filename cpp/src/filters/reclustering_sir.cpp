@@ -63,6 +63,7 @@ const core::ParameterTable<ReclusteringSirParams>& ReclusteringSirParams::table(
           .add("keep_fraction", &P::keep_fraction)
           .add("merge_distance", &P::merge_distance)
           .add("merge_size", &P::merge_size)
+          .add("merge_velocity", &P::merge_velocity)
           .add("max_misses", &P::max_misses)
           .include(&P::size)
           .add("size_by_row", &P::size_by_row)
@@ -99,6 +100,8 @@ void validate(const ReclusteringSirParams& p) {
           p.merge_distance, ">= 0 and finite");
   require(std::isfinite(p.merge_size) && p.merge_size >= 0.0, "merge_size", p.merge_size,
           ">= 0 and finite");
+  require(std::isfinite(p.merge_velocity) && p.merge_velocity >= 0.0, "merge_velocity",
+          p.merge_velocity, ">= 0 and finite");
   require(p.max_misses >= 1, "max_misses", p.max_misses, ">= 1");
   validate(p.size);
   require(p.sigma_xy >= 0.0 && p.sigma_xy <= 1.0, "sigma_xy", p.sigma_xy, "in [0, 1]");
@@ -594,6 +597,12 @@ void ReclusteringSir::recluster() {
             zsets_[b + 1].rowwise().maxCoeff());
         merge = hi[0] - lo[0] <= 2.0f * hw * float(params_.merge_size) &&
                 hi[1] - lo[1] <= 2.0f * hh * float(params_.merge_size);
+      }
+      // Two people crossing come as close as a split silhouette's halves, but move apart: a pair
+      // whose velocities differ by more than merge_velocity person heights per step is two people.
+      if (merge && params_.merge_velocity > 0.0) {
+        const Eigen::Vector2f dv = objects_[a].estimate.segment<2>(2) - objects_[b].estimate.segment<2>(2);
+        merge = dv.norm() <= float(params_.merge_velocity) * 2.0f * hh;
       }
       if (!merge) continue;
       if (objects_[b].record.confirmed && !objects_[a].record.confirmed) {

@@ -12,7 +12,8 @@ const core::ParameterTable<TrackManagementParams>& TrackManagementParams::table(
   static const auto table = core::ParameterTable<P>()
                                 .add("confirm_frames", &P::confirm_frames)
                                 .add("lost_memory", &P::lost_memory)
-                                .add("relabel_overlap", &P::relabel_overlap);
+                                .add("relabel_overlap", &P::relabel_overlap)
+                                .add("relabel_distance", &P::relabel_distance);
   return table;
 }
 
@@ -21,6 +22,8 @@ void validate(const TrackManagementParams& p) {
   require(p.lost_memory >= 0, "lost_memory", p.lost_memory, ">= 0");
   require(p.relabel_overlap > 0.0 && p.relabel_overlap <= 1.0, "relabel_overlap",
           p.relabel_overlap, "in (0, 1]");
+  require(std::isfinite(p.relabel_distance) && p.relabel_distance >= 0.0, "relabel_distance",
+          p.relabel_distance, ">= 0 and finite");
 }
 
 double box_iou(const Eigen::Vector4f& a, const Eigen::Vector4f& b) {
@@ -54,18 +57,7 @@ std::optional<std::uint64_t> TrackManager::observe(std::uint64_t id, TrackRecord
   }
   std::optional<std::uint64_t> taken;
   if (!record.confirmed && !lost_.empty()) {
-    // The lost track whose box, moved on at its velocity, overlaps this estimate most.
-    double best = params_.relabel_overlap;
-    auto found = lost_.end();
-    for (auto it = lost_.begin(); it != lost_.end(); ++it) {
-      Eigen::Vector4f predicted = it->box;
-      predicted.head<2>() += float(step_ - it->step) * it->velocity;
-      const double iou = box_iou(predicted, box);
-      if (iou >= best) {
-        best = iou;
-        found = it;
-      }
-    }
+    const auto found = find_lost(box);
     if (found != lost_.end()) {
       taken = found->id;
       record.velocity = found->velocity;
@@ -75,6 +67,34 @@ std::optional<std::uint64_t> TrackManager::observe(std::uint64_t id, TrackRecord
   }
   if (record.hits >= params_.confirm_frames) record.confirmed = true;
   return taken;
+}
+
+std::vector<TrackManager::LostTrack>::iterator TrackManager::find_lost(
+    const Eigen::Vector4f& box) {
+  // The lost track whose box, moved on at its velocity, overlaps this estimate most; failing
+  // that, the nearest within relabel_distance.
+  double best_iou = params_.relabel_overlap;
+  double best_d2 = params_.relabel_distance * params_.relabel_distance;
+  auto by_iou = lost_.end(), by_distance = lost_.end();
+  const Eigen::Vector2f centre = box.head<2>() + 0.5f * box.tail<2>();
+  for (auto it = lost_.begin(); it != lost_.end(); ++it) {
+    Eigen::Vector4f predicted = it->box;
+    predicted.head<2>() += float(step_ - it->step) * it->velocity;
+    const double iou = box_iou(predicted, box);
+    if (iou >= best_iou) {
+      best_iou = iou;
+      by_iou = it;
+    }
+    if (params_.relabel_distance > 0.0 && predicted[2] > 0.0f && predicted[3] > 0.0f) {
+      const Eigen::Vector2f d = (centre - predicted.head<2>() - 0.5f * predicted.tail<2>())
+                                    .cwiseQuotient(predicted.tail<2>());
+      if (d.squaredNorm() <= best_d2) {
+        best_d2 = d.squaredNorm();
+        by_distance = it;
+      }
+    }
+  }
+  return by_iou != lost_.end() ? by_iou : by_distance;
 }
 
 bool TrackManager::report(TrackRecord& record, const Eigen::Vector4f& box) {

@@ -108,17 +108,6 @@ bool WeightUpdate::weigh(Eigen::Index b, const double* log_w, const double* log_
   }
   BlockSums& s = blocks_[static_cast<std::size_t>(b)];
   s = {-kInf, 0.0, 0.0, -1, r.begin};
-  // A NaN or +inf anywhere makes the sum NaN or +inf (-inf entries alone give -inf): one
-  // vectorised pass instead of a test per particle; the culprit is looked up only then.
-  const double check = tv.sum();
-  if (std::isnan(check) || check == kInf) {
-    for (Eigen::Index i = 0; i < n; ++i) {
-      if (!(t[i] < kInf)) {
-        s.invalid = r.begin + i;
-        return false;
-      }
-    }  // (not found: finite values whose sum overflowed; carry on)
-  }
   s.max = tv.maxCoeff();
   // Its first index: eight at a time (the test of a group vectorises), then within the group.
   Eigen::Index first = 0;
@@ -141,6 +130,17 @@ bool WeightUpdate::weigh(Eigen::Index b, const double* log_w, const double* log_
   // Eigen's sums are vectorised with a fixed order, so they are reproducible.
   s.sum = ev.sum();
   s.sum_sq = ev.square().sum();
+  // A NaN or +inf t_i makes its exp(t_i - max) NaN (NaN - max, or inf - inf with max = inf; a NaN
+  // max makes them all NaN), while valid t_i give e_i in [0, 1]: so the sum tells without a pass
+  // of its own, and the culprit is looked up only then.
+  if (std::isnan(s.sum)) {
+    for (Eigen::Index i = 0; i < n; ++i) {
+      if (!(t[i] < kInf)) {
+        s.invalid = r.begin + i;
+        return false;
+      }
+    }
+  }
   return true;
 }
 

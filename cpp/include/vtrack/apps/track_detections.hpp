@@ -90,7 +90,8 @@ struct BoxTrackerParams {
   // tracker): a track of the MAP hypothesis is reported once it has been in the MAP estimate on
   // confirm_frames frames (as SORT's min_hits); a confirmed label that leaves the estimate is
   // remembered for lost_memory frames, and a new label whose box overlaps it (moved on at the
-  // track's velocity) by IoU >= relabel_overlap reports under its id. Estimates only: the GLMB
+  // track's velocity) by IoU >= relabel_overlap (or, with relabel_distance > 0, whose centre is
+  // within that many of its box sizes) reports under its id. Estimates only: the GLMB
   // itself is unaffected. Measured on frames 1-397 (benchmarks/detections.py, as min_age, the
   // label's age, which equals the count while a track stays in the estimate): 3 trims a few FPs
   // of short-lived tracks (MOTA +0.005 to +0.024 on Faster R-CNN and ACF, HOTA +0.002) but the

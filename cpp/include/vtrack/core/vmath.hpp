@@ -15,6 +15,7 @@
 // and Cephes' (S. L. Moshier, 1984-1992: logf.c, sinf.c, cosf.c), atan's is its Taylor series;
 // the range reductions are the textbook ones (Cody & Waite 1980; Muller, "Elementary
 // Functions", 2016).
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -168,30 +169,29 @@ inline float float_from_bits(std::uint32_t u) noexcept {
   return x;
 }
 
-// e^x in single precision (Cephes expf.c: Cody-Waite reduction, degree-5 polynomial; relative
-// error < 1e-7 against libm). Results below 2^-126 (x < -87.33) are flushed to 0; above x = 88.37, where 2^n
-// would need n = 128, they are +inf (e^88.37 = 2.5e38, the largest float 3.4e38); NaN gives NaN.
-// For particle weights exp(t - max t), where the 1e-7 error is far below the Monte Carlo error
-// and a weight under e^-87 of the largest one is nothing.
+// e^x in single precision (Cephes expf.c: Cody-Waite reduction by n = round(x log2 e), degree-5
+// polynomial on the remainder, 2^n assembled in the exponent bits; relative error < 1e-7 against
+// libm). Results below 2^-126 (x < -87.33) are flushed to 0; above x = 88.37, where 2^n would need
+// n = 128, they are +inf (e^88.37 = 2.5e38, the largest float 3.4e38); NaN gives NaN. For the KDE
+// background's kernels and particle weights exp(t - max t), where the 1e-7 error is far below
+// the modelling and Monte Carlo errors.
 inline float exp(float x) noexcept {
-  constexpr float kLog2e = 1.44269504088896341f;
-  constexpr float kShifter = 0x1.8p23f;  // adding it rounds to an integer held in the low bits
-  const float xc = x < -87.33f ? -87.33f : (x > 88.37f ? 88.37f : x);  // -126 <= n <= 127
-  const float k = xc * kLog2e + kShifter;
-  const float n = k - kShifter;
-  const float r = (xc - n * 0.693359375f) + n * 2.12194440e-4f;  // x - n ln 2 (Cephes C1, C2)
+  // -126 <= n <= 127; NaN is clamped too, so that the conversion of n to an integer is defined.
+  const float xc = x > -87.33f ? (x < 88.37f ? x : 88.37f) : -87.33f;
+  const float n = std::floor(xc * 1.44269504088896341f + 0.5f);
+  float r = xc - n * 0.693359375f;  // x - n ln 2 in two parts (Cephes C1, C2)
+  r = r + n * 2.12194440e-4f;
   float p = 1.9875691500e-4f;
   p = p * r + 1.3981999507e-3f;
   p = p * r + 8.3334519073e-3f;
   p = p * r + 4.1665795894e-2f;
   p = p * r + 1.6666665459e-1f;
   p = p * r + 5.0000001201e-1f;
-  const float y = p * (r * r) + r + 1.0f;
-  // 2^n: k's bit pattern is 0x4b400000 + n, and shifting (bits + 127) left by 23 leaves only the
-  // biased exponent n + 127 (-126 <= n <= 127 after the clamp).
-  const float scale = float_from_bits((bits(k) + 127u) << 23);
+  p = p * r * r + r + 1.0f;
+  const float scale = float_from_bits(static_cast<std::uint32_t>(static_cast<std::int32_t>(n) + 127)
+                                      << 23);
   constexpr float kInf = std::numeric_limits<float>::infinity();
-  return x < -87.33f ? 0.0f : (x > 88.37f ? kInf : y * scale);
+  return x < -87.33f ? 0.0f : (x > 88.37f ? kInf : (x == x ? p * scale : x));
 }
 
 // Natural logarithm of a positive normal float (Cephes logf.c polynomial, relative error

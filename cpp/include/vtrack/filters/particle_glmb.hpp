@@ -143,19 +143,11 @@ struct ParticleParams {
   // the previous scan, at its predicted mean, hides what lies more than occlusion_margin behind
   // it from the tracks that report does not hold (births, tracks not or no longer reported), as
   // a detection's footprint hides what lies behind the detection. Why: eq. (4) is separable, so
-  // a track behind a person the detector missed scores that person's pixels as its own (with
-  // sigma_t = sigma_b a pixel votes for any state less than twice its depth away): followed on
-  // benchmarks/rgbd_switching.py seed 20, four of its five short false labels (2-9 frames) were
-  // clutter-born tracks 0.4-0.6 m behind a missed person, gaining existence on the person's
-  // pixels while the person's own track carried them. Reported tracks are not hidden by one
-  // another: a person behind a tracked one keeps eq. (4) as before (hidden from every track
-  // older than it, such a person lost the nearer person's pixels as support and died in bursts
-  // more often: seed 15, one more re-birth). Off by default: seed 20's false labels went (OSPA(2)
-  // 0.667 -> 0.525), but over seeds 0-4 / 15-19 (switching filter, totals) label switches rose
-  // 25 -> 38 / 62 -> 70 and OSPA(2) medians moved 0.674 -> 0.774 / 0.779 -> 0.770 (seed 1: 9
-  // of its 11 new switches the per-frame matching alternating between two people 0.15-0.2 m
-  // apart; that an unreported track of one of them, e.g. one the duplicate gate drops, is hidden
-  // behind the other's footprint is the suspected path, not established).
+  // a track behind a person the detector missed scores that person's pixels as its own (short
+  // false labels of clutter-born tracks behind a missed person). Reported tracks are not hidden
+  // by one another (a person behind a tracked one would lose the nearer person's pixels as
+  // support). Off by default: it removes those false labels but raised the label switches over
+  // the benchmark's seed sets (benchmarks/rgbd_switching.py's docstring has the figures).
   bool track_occluders = false;
   // State-dependent p_D (eq. 8's psi has p_D,k(x, l)): with occluders, p_D(x) = p_D v(x), v(x)
   // the visible fraction of T(x). A person fully hidden behind a detected one cannot be detected,

@@ -133,6 +133,12 @@ struct ReclusteringSirParams {
   // size (w x h) merge: one silhouette that re-clustering split into two subsets (each subset's
   // centroid is a stable fixed point of the likelihood's product term, as in 2-means).
   double merge_size = 1.3;
+  // ... unless their estimated velocities differ by more than merge_velocity person heights per
+  // step (0 = off: every such pair merges). The halves of one silhouette move together; two
+  // people who cross come as close but move apart, and merging them hands the survivor's label
+  // to either one and the other a re-founded object's. 0.08 h is about a walker's own speed at
+  // PETS09's 7 frames/s (benchmarks/pets09.py's docstring has the sweep).
+  double merge_velocity = 0.08;
   // An object with fewer than keep_fraction x a person's grid count of measurements on
   // max_misses consecutive steps ends (>= 1). (PETS09 frames 1-397, 100 particles, seeds 0-2:
   // 0.1 kept objects on noise and ghosts alive, MOTA 0.037 against 0.234 with 0.3.)

@@ -3,9 +3,11 @@
 // the box GLMB: confirmation (a track is reported only after it has been estimated on
 // confirm_frames steps) and a lost-track memory (a confirmed track that ends leaves its id, last
 // reported box and velocity behind for lost_memory steps; an unconfirmed track whose box overlaps
-// a remembered one, moved on at its velocity, by IoU >= relabel_overlap takes that id back and is
-// confirmed at once, so a person keeps one identity across a short occlusion). Neither changes
-// what the filter believes, only what it reports and under which id.
+// a remembered one, moved on at its velocity, by IoU >= relabel_overlap, or, failing that, whose
+// centre lies within relabel_distance of the remembered box's moved-on centre (in units of that
+// box's width and height), takes that id back and is confirmed at once, so a person keeps one
+// identity across a short occlusion). Neither changes what the filter believes, only what it
+// reports and under which id.
 //
 // Each tracker sets its own defaults (MultiBernoulliParams and BoxTrackerParams say why);
 // confirm_frames 1 with lost_memory 0 reports every estimate as the filter gives it.
@@ -23,6 +25,14 @@ struct TrackManagementParams {
   int confirm_frames = 1;        // >= 1; steps with an estimate before a track is reported
   int lost_memory = 0;           // >= 0; steps a lost confirmed track is remembered (0 = off)
   double relabel_overlap = 0.3;  // (0, 1]; IoU a new track needs with a remembered one
+  // >= 0 (0 = off): else, the largest normalised centre distance d to a remembered box (x, y,
+  // w, h) moved on at its velocity, d^2 = (dx / w)^2 + (dy / h)^2, at which a new track takes
+  // that id (the nearest such). IoU alone fails where a track is re-founded after a loss of more
+  // than a few frames: the new box and the remembered one rarely overlap by then (the lost box
+  // was shrinking as its evidence faded, the new one starts at the birth's size, and the
+  // velocity's error grows with the gap), though the new track starts within a box of where the
+  // lost one was heading.
+  double relabel_distance = 0.0;
 
   static const core::ParameterTable<TrackManagementParams>& table();
 };
@@ -71,6 +81,10 @@ class TrackManager {
     Eigen::Vector2f velocity;  // per step
     int step;                  // step of that report
   };
+  // The remembered track an unconfirmed estimate `box` takes the id of (relabel_overlap, then
+  // relabel_distance), or lost_.end().
+  std::vector<LostTrack>::iterator find_lost(const Eigen::Vector4f& box);
+
   TrackManagementParams params_;
   std::vector<LostTrack> lost_;
   int step_ = 0;
