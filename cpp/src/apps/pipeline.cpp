@@ -45,7 +45,7 @@ class SirFrameTracker : public FrameTracker {
       : background_(p.sir_background), tracker_(width, height, p.sir) {}
   const filters::Tracks& step(const cv::Mat& frame) override {
     background_.apply(frame, y_);
-    return tracker_.step(y_);
+    return tracker_.step(y_, frame);  // the frame's colours keep the labels on the people
   }
 
  private:

@@ -519,7 +519,10 @@ void merge_overlapping(std::vector<BernoulliComponent>& components, double min_o
   }
   std::size_t k = 0;
   for (std::size_t i = 0; i < components.size(); ++i) {
-    if (!merged[i]) components[k++] = std::move(components[i]);
+    if (merged[i]) continue;
+    // Not onto itself: a self-move empties the record's vectors (its colour model).
+    if (k != i) components[k] = std::move(components[i]);
+    ++k;
   }
   components.resize(k);
   if (relabelled) sort_by_label(components);

@@ -53,7 +53,10 @@
 //   9. estimates: each object's weighted mean ellipse, reported as its bounding box (2a x 2b)
 //      under the object's label for life, through filters::TrackManager (confirmation, lost-track
 //      memory) and the box calibration to the annotation convention (box_scale_*, box_offset_*,
-//      as MultiBernoulliParams).
+//      as MultiBernoulliParams). With the frame (step(y, frame)), the labels follow the people's
+//      colours (TrackManager's appearance, beyond the paper): the objects that come apart after
+//      their boxes overlapped share their labels out by colour and motion, and a re-founded object
+//      takes the lost label whose colours it has. Without it, labels follow the objects.
 //
 // No pixel-size default: every size is relative to the people's height h, learnt from the
 // scene's foreground (models::ForegroundSizeEstimator, as the multi-Bernoulli tracker does), and
@@ -68,6 +71,7 @@
 #include "vtrack/core/parameters.hpp"
 #include "vtrack/core/random.hpp"
 #include "vtrack/core/resampling.hpp"
+#include "vtrack/filters/appearance.hpp"
 #include "vtrack/filters/person_prior.hpp"
 #include "vtrack/filters/track_management.hpp"
 #include "vtrack/filters/tracks.hpp"
@@ -224,10 +228,12 @@ class ReclusteringSir {
 
   ReclusteringSir(int width, int height, const ReclusteringSirParams& params = {});
 
-  // One step on the background-subtracted image y (H x W float32 in [0, 1], 1 = background).
-  // Returns the reported tracks in id order: the calibrated ellipse bounding box, score N_in / N,
-  // state = the estimate (x, y, vx, vy, a, b).
-  const Tracks& step(const cv::Mat& y);
+  // One step on the background-subtracted image y (H x W float32 in [0, 1], 1 = background) and,
+  // optionally, the frame it came from (8-bit BGR of y's size; empty: none), whose colours keep
+  // the labels on the people when management.appearance_rate > 0 (step 9). Returns the reported
+  // tracks in id order: the calibrated ellipse bounding box, score N_in / N, state = the estimate
+  // (x, y, vx, vy, a, b).
+  const Tracks& step(const cv::Mat& y, const cv::Mat& frame = cv::Mat());
 
   const Tracks& tracks() const { return tracks_; }
   const Particles& particles() const { return particles_; }
@@ -261,7 +267,8 @@ class ReclusteringSir {
   State injection_state(const Eigen::Vector2f& centre);
   void recluster();
   void resample();
-  void report();
+  // Step 9; the objects' colour histograms from `frame` when it is not empty.
+  void report(const cv::Mat& y, const cv::Mat& frame);
   // The engine's reweight with each cluster's log-likelihoods shifted to keep its mass.
   void reweight_per_cluster(Eigen::VectorXd& log_lik);
   void end_object(std::size_t k);
@@ -319,6 +326,8 @@ class ReclusteringSir {
   std::vector<Eigen::Matrix2Xf> zsets_;
   Particles::States eps_, next_;
   std::vector<float> noise_;
+  ForegroundColour colour_;
+  std::vector<ColourHistogram> seen_;  // per object: its histogram at this step
 };
 
 }  // namespace vtrack::filters
