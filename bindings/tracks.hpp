@@ -1,6 +1,5 @@
 #pragma once
 // vtrack.Tracks: filters::Tracks (the estimates of one step) as a Python object.
-#include <type_traits>
 #include <vector>
 
 #include "common.hpp"
@@ -34,14 +33,11 @@ auto last_tracks() {
 }
 
 // The surface of the trackers fed background-subtracted images (MultiBernoulliTracker,
-// ReclusteringSirTracker): Tracker(image_size, **params), step(y[, frame]) -> Tracks, tracks, image_size,
-// default_params() / params. Tracker has Tracker(width, height, Params), step(cv::Mat),
-// tracks(), width(), height() and params().
+// ReclusteringSirTracker): Tracker(image_size, **params), step(y, frame=None) -> Tracks, tracks,
+// image_size, default_params() / params. Tracker has Tracker(width, height, Params),
+// step(cv::Mat y, cv::Mat frame) (frame empty: none), tracks(), width(), height() and params().
 template <class Tracker, class Params>
 void def_foreground_tracker(py::class_<Tracker>& cls) {
-  // Trackers whose step also takes the BGR frame (colour appearance) get step(y, frame=None).
-  constexpr bool kTakesFrame =
-      std::is_invocable_v<decltype(&Tracker::step), Tracker&, const cv::Mat&, const cv::Mat&>;
   cls.def(py::init([](const py::handle& image_size, const py::kwargs& kwargs) {
            const auto [w, h] = image_size_from(image_size);
            return Tracker(w, h, params_from_kwargs<Params>(kwargs, "tracker"));
@@ -52,28 +48,17 @@ void def_foreground_tracker(py::class_<Tracker>& cls) {
           [](Tracker& f, const py::handle& y, const py::handle& frame) {
             py::array keep, keep_frame;
             const cv::Mat img = float32_image(y, "y", keep);
-            cv::Mat bgr;
-            if (!frame.is_none()) {
-              if constexpr (!kTakesFrame) throw py::type_error("this tracker takes no frame");
-              bgr = bgr_frame(frame, "frame", keep_frame);  // its size: the tracker checks
-            }
+            cv::Mat bgr;  // its size: the tracker checks it
+            if (!frame.is_none()) bgr = bgr_frame(frame, "frame", keep_frame);
             ObjectGuard guard(&f);
             py::gil_scoped_release release;
-            if constexpr (kTakesFrame) {
-              return TrackSet{f.step(img, bgr)};
-            } else {
-              return TrackSet{f.step(img)};
-            }
+            return TrackSet{f.step(img, bgr)};
           },
           py::arg("y"), py::arg("frame") = py::none(),
-          kTakesFrame
-              ? "Process one background-subtracted image y (H x W float32 in [0, 1], H and W as "
-                "image_size) and, optionally, the BGR frame it came from (H x W x 3 uint8), whose "
-                "colours keep the labels on the people (appearance_rate > 0); return the "
-                "reported tracks (vtrack.Tracks). Without a frame the labels follow the filter's "
-                "objects."
-              : "Process one background-subtracted image y (H x W float32 in [0, 1], H and W as "
-                "image_size) and return the reported tracks (vtrack.Tracks).")
+          "Process one background-subtracted image y (H x W float32 in [0, 1], H and W as "
+          "image_size) and, optionally, the BGR frame it came from (H x W x 3 uint8), whose "
+          "colours keep the labels on the people when appearance_rate > 0; return the reported "
+          "tracks (vtrack.Tracks). Without a frame the labels follow the filter's estimates.")
       .def_property_readonly("tracks", last_tracks<Tracker>(),
                              "The tracks returned by the last step.")
       .def_property_readonly(

@@ -182,7 +182,11 @@ struct ReclusteringSirParams {
   // size_by_row), MOTA / IDF1 with 0.3 -> 0.1: 1-397 0.504 / 0.485 -> 0.502 / 0.527, 398-795
   // 0.686 / 0.494 -> 0.699 / 0.522, all 0.596 / 0.476 -> 0.602 / 0.499 (65 -> 51 track ids for
   // 19 people; 0.05 the same within 0.002; lost_memory 60 or 100 with 0.1: within 0.005).
-  TrackManagementParams management{5, 30, 0.1};
+  // Colour appearance on (appearance_rate 0.05, appearance_sigma 0.15, appearance_distance 1.5;
+  // used when step() is given the frame, as the sir pipeline does): when two people's blobs cover
+  // each other the objects merge or bounce, and the labels went to whichever object was nearer;
+  // the colours give them back (benchmarks/pets09_identity.py has the sweep on frames 1-397).
+  TrackManagementParams management{5, 30, 0.1, 0.0, 0.05, 0.15, 1.5};
   // The reported box: the ellipse's bounding box (2a x 2b) calibrated to the annotation
   // convention, as MultiBernoulliParams' box. Defaults: the medians of the fits of
   // benchmarks/_foreground.py's fit_calibration on PETS09-S2L1 frames 1-397, tracker seeds 0-2
