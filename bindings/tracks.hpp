@@ -33,9 +33,9 @@ auto last_tracks() {
 }
 
 // The surface of the trackers fed background-subtracted images (MultiBernoulliTracker,
-// ReclusteringSirTracker): Tracker(image_size, **params), step(y) -> Tracks, tracks, image_size,
-// default_params() / params. Tracker has Tracker(width, height, Params), step(cv::Mat),
-// tracks(), width(), height() and params().
+// ReclusteringSirTracker): Tracker(image_size, **params), step(y, frame=None) -> Tracks, tracks,
+// image_size, default_params() / params. Tracker has Tracker(width, height, Params),
+// step(cv::Mat y, cv::Mat frame) (frame empty: none), tracks(), width(), height() and params().
 template <class Tracker, class Params>
 void def_foreground_tracker(py::class_<Tracker>& cls) {
   cls.def(py::init([](const py::handle& image_size, const py::kwargs& kwargs) {
@@ -45,16 +45,20 @@ void def_foreground_tracker(py::class_<Tracker>& cls) {
          py::arg("image_size"))
       .def(
           "step",
-          [](Tracker& f, const py::handle& y) {
-            py::array keep;
+          [](Tracker& f, const py::handle& y, const py::handle& frame) {
+            py::array keep, keep_frame;
             const cv::Mat img = float32_image(y, "y", keep);
+            cv::Mat bgr;  // its size: the tracker checks it
+            if (!frame.is_none()) bgr = bgr_frame(frame, "frame", keep_frame);
             ObjectGuard guard(&f);
             py::gil_scoped_release release;
-            return TrackSet{f.step(img)};
+            return TrackSet{f.step(img, bgr)};
           },
-          py::arg("y"),
+          py::arg("y"), py::arg("frame") = py::none(),
           "Process one background-subtracted image y (H x W float32 in [0, 1], H and W as "
-          "image_size) and return the reported tracks (vtrack.Tracks).")
+          "image_size) and, optionally, the BGR frame it came from (H x W x 3 uint8), whose "
+          "colours keep the labels on the people when appearance_rate > 0; return the reported "
+          "tracks (vtrack.Tracks). Without a frame the labels follow the filter's estimates.")
       .def_property_readonly("tracks", last_tracks<Tracker>(),
                              "The tracks returned by the last step.")
       .def_property_readonly(

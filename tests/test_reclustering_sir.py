@@ -94,6 +94,53 @@ def test_no_motion_then_people_in_view_and_changing_sizes():
         t.step(np.ones((150, 200)))
 
 
+def scene_frame(boxes, colours, size=(200, 150)):
+    """The BGR frame of scene_y's boxes: grey background, each box in its colour (later in front)."""
+    frame = np.full((size[1], size[0], 3), 128, np.uint8)
+    for (x, top, w, h), colour in zip(boxes, colours):
+        frame[max(top, 0):top + h, max(x, 0):x + w] = colour
+    return frame
+
+
+def test_colours_give_the_labels_back_after_a_bounce():
+    """Two people cross on one row, their blobs covering each other: the objects bounce. With the
+    frames, each label goes back to the person of its colours (C++ ReclusteringSir tests count the
+    seeds); without, the labels follow the objects; with appearance_rate 0 the frame changes
+    nothing."""
+    def run(frames, **params):
+        t = vtrack.ReclusteringSirTracker((200, 150), seed=0, n_particles=100, height_mean=30,
+                                          size_aspect=0.4, confirm_frames=1, lost_memory=0,
+                                          **FOREGROUND_BOX, **params)
+        ids = {}
+        for k in range(60):
+            boxes = [(20 + 3 * k, 60, 12, 30), (168 - 3 * k, 60, 12, 30)]
+            y = scene_y(boxes)
+            tracks = t.step(y, scene_frame(boxes, [(40, 40, 200), (200, 60, 40)])) if frames \
+                else t.step(y)
+            if k in (15, 45):
+                iou = vtrack.evaluate.box_iou_matrix(np.array(boxes, float), tracks.boxes)
+                ids[k] = [int(tracks.ids[np.argmax(row)]) if row.max() > 0.5 else 0 for row in iou]
+        return ids[15], ids[45]
+
+    before, after = run(True, appearance_rate=0.05)
+    assert 0 not in before and before[0] != before[1] and after == before
+    before, after = run(False, appearance_rate=0.05)
+    assert after == before[::-1]
+    assert run(True, appearance_rate=0.0) == (before, after)
+
+
+def test_step_rejects_a_bad_frame():
+    t = vtrack.ReclusteringSirTracker((200, 150), seed=0, n_particles=100)
+    y = scene_y([(40, 40, 12, 30)])
+    with pytest.raises(TypeError, match="frame must have dtype uint8"):
+        t.step(y, np.zeros((150, 200, 3), np.float32))
+    with pytest.raises(ValueError, match=r"frame must have shape \(H, W, 3\)"):
+        t.step(y, np.zeros((150, 200), np.uint8))
+    with pytest.raises(ValueError, match="frame must have y's size 150 x 200"):
+        t.step(y, np.zeros((100, 200, 3), np.uint8))
+    assert t.frame == 0
+
+
 def test_parameters_by_name():
     defaults = vtrack.ReclusteringSirTracker.default_params()
     assert defaults["n_particles"] == 600 and defaults["budget_objects"] == 4

@@ -259,8 +259,68 @@ TEST(ReclusteringSir, CrossingPeopleKeepTheirLabels) {
     }
     return seeds;
   };
-  EXPECT_GE(kept(ReclusteringSirParams().merge_velocity), 6);
+  EXPECT_GE(kept(ReclusteringSirParams().merge_velocity), 6);  // no frame: no colours
   EXPECT_LE(kept(0.0), 1);
+}
+
+// Two people cross on the same row, a red one and a blue one in front of it, so that their blobs
+// cover each other exactly: the objects bounce (each takes the pixels on its side) and the labels
+// go back the way they came. Given the frame, TrackManager's appearance gives each label back to
+// the person of its colours. Counted: the seeds (of 0-9) on which both people are matched
+// (IoU > 0.5) after the crossing by the ids they had before it (measured: 9 with the frame,
+// 0 without, the frame with appearance_rate 0 as without).
+TEST(ReclusteringSir, ColoursGiveTheLabelsBackAfterABounce) {
+  auto kept = [](bool with_frame, double rate) {
+    int seeds = 0;
+    for (std::uint64_t seed = 0; seed < 10; ++seed) {
+      ReclusteringSirParams p = small_params(seed);
+      p.management.appearance_rate = rate;
+      ReclusteringSir f(200, 150, p);
+      std::uint64_t before[2] = {0, 0}, after[2] = {0, 0};
+      for (int k = 0; k < 60; ++k) {
+        const cv::Rect people[2] = {{20 + 3 * k, 60, 12, 30}, {168 - 3 * k, 60, 12, 30}};
+        cv::Mat frame(150, 200, CV_8UC3, cv::Scalar(128, 128, 128));
+        const cv::Rect inside(0, 0, 200, 150);
+        frame(people[0] & inside).setTo(cv::Scalar(40, 40, 200));  // BGR: red
+        frame(people[1] & inside).setTo(cv::Scalar(200, 60, 40));  // blue, in front
+        const cv::Mat y = scene({people[0], people[1]});
+        const Tracks tracks = with_frame ? f.step(y, frame) : f.step(y);
+        for (int i = 0; i < 2; ++i) {
+          const auto* t = matched(tracks, people[i], 0.5);
+          if (k == 15 && t) before[i] = t->id;
+          if (k == 45 && t) after[i] = t->id;
+        }
+      }
+      const bool same = before[0] != 0 && before[1] != 0 && before[0] != before[1] &&
+                        after[0] == before[0] && after[1] == before[1];
+      seeds += same ? 1 : 0;
+    }
+    return seeds;
+  };
+  const double rate = ReclusteringSirParams().management.appearance_rate > 0.0
+                          ? ReclusteringSirParams().management.appearance_rate
+                          : 0.05;
+  const int with_frame = kept(true, rate), without = kept(false, rate);
+  EXPECT_GE(with_frame, 8) << "without: " << without;
+  EXPECT_LE(without, 2) << "with the frame: " << with_frame;
+  EXPECT_EQ(kept(true, 0.0), without);
+}
+
+// The frame must be 8-bit BGR of y's size; a bad one changes nothing.
+TEST(ReclusteringSir, RejectsABadFrame) {
+  ReclusteringSir f(200, 150, small_params());
+  const cv::Mat y = scene({{50, 60, 12, 30}});
+  for (const cv::Mat& bad : {cv::Mat(150, 200, CV_8UC1, cv::Scalar(0)),
+                             cv::Mat(150, 200, CV_32FC3, cv::Scalar(0, 0, 0)),
+                             cv::Mat(100, 200, CV_8UC3, cv::Scalar(0, 0, 0))}) {
+    try {
+      f.step(y, bad);
+      ADD_FAILURE() << "accepted a bad frame";
+    } catch (const InvalidArgument& e) {
+      EXPECT_NE(std::string(e.what()).find("frame"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(f.frame(), 0);
 }
 
 TEST(ReclusteringSir, SameSeedSameTracks) {

@@ -286,6 +286,9 @@ class GlmbTracker:
         lost_memory: int = 0,
         relabel_overlap: float = 0.3,
         relabel_distance: float = 0.0,
+        appearance_rate: float = 0.0,
+        appearance_sigma: float = 0.3,
+        appearance_distance: float = 3.0,
     ) -> None: ...
     def step(
         self, detections: ArrayLike, depth: Optional[npt.NDArray[Union[np.float32, np.float64]]] = None
@@ -408,6 +411,9 @@ class MultiBernoulliTracker:
         lost_memory: int = 30,
         relabel_overlap: float = 0.3,
         relabel_distance: float = 3.0,
+        appearance_rate: float = 0.0,
+        appearance_sigma: float = 0.3,
+        appearance_distance: float = 3.0,
         velocity_smoothing: float = 0.3,
         box_scale_w: float = 1.673,
         box_scale_h: float = 1.706,
@@ -415,7 +421,9 @@ class MultiBernoulliTracker:
         box_offset_y: float = 0.045,
         seed: int = 0,
     ) -> None: ...
-    def step(self, y: npt.NDArray[np.float32]) -> Tracks: ...
+    def step(
+        self, y: npt.NDArray[np.float32], frame: Optional[npt.NDArray[np.uint8]] = None
+    ) -> Tracks: ...
     @property
     def tracks(self) -> Tracks: ...
     @property
@@ -471,13 +479,18 @@ class ReclusteringSirTracker:
         lost_memory: int = 30,
         relabel_overlap: float = 0.1,
         relabel_distance: float = 0.0,
+        appearance_rate: float = 0.05,
+        appearance_sigma: float = 0.15,
+        appearance_distance: float = 1.5,
         box_scale_w: float = 1.06,
         box_scale_h: float = 0.93,
         box_offset_x: float = 0.01,
         box_offset_y: float = -0.06,
         seed: int = 0,
     ) -> None: ...
-    def step(self, y: npt.NDArray[np.float32]) -> Tracks: ...
+    def step(
+        self, y: npt.NDArray[np.float32], frame: Optional[npt.NDArray[np.uint8]] = None
+    ) -> Tracks: ...
     @property
     def tracks(self) -> Tracks: ...
     @property
@@ -601,6 +614,9 @@ class BoxTracker:
         lost_memory: int = 0,
         relabel_overlap: float = 0.3,
         relabel_distance: float = 0.0,
+        appearance_rate: float = 0.0,
+        appearance_sigma: float = 0.3,
+        appearance_distance: float = 3.0,
         ranking: Literal["murty", "gibbs"] = 'murty',
         seed: int = 0,
     ) -> None: ...

@@ -22,7 +22,7 @@ class MbFrameTracker : public FrameTracker {
         follow_closing_(p.mb.likelihood.closing_size == 0 && p.mb.likelihood.closing_ratio > 0) {}
   const filters::Tracks& step(const cv::Mat& frame) override {
     background_.apply(frame, y_);
-    const filters::Tracks& tracks = tracker_.step(y_);
+    const filters::Tracks& tracks = tracker_.step(y_, frame);  // colours: appearance_rate
     // The closing of y is relative to the people's size, which the tracker learns: the background
     // model's closing (and so its selective update's mask) follows the tracker's.
     if (follow_closing_) background_.set_closing(tracker_.likelihood().closing_pixels());
@@ -45,7 +45,7 @@ class SirFrameTracker : public FrameTracker {
       : background_(p.sir_background), tracker_(width, height, p.sir) {}
   const filters::Tracks& step(const cv::Mat& frame) override {
     background_.apply(frame, y_);
-    return tracker_.step(y_);
+    return tracker_.step(y_, frame);  // colours keep the labels on the people: appearance_rate
   }
 
  private:

@@ -233,12 +233,13 @@ double MultiBernoulliFilter::centre_row_scale(double cy) const {
   return params_.size_by_row ? line_centre_scale(cy) : 1.0;
 }
 
-const Tracks& MultiBernoulliFilter::step(const cv::Mat& y) {
+const Tracks& MultiBernoulliFilter::step(const cv::Mat& y, const cv::Mat& frame) {
   if (y.cols != width_ || y.rows != height_) {
     throw InvalidArgument("y must be " + std::to_string(height_) + " x " + std::to_string(width_) +
                           " (height x width), got " + std::to_string(y.rows) + " x " +
                           std::to_string(y.cols));
   }
+  if (!frame.empty()) check_colour_frame(frame, y);
   likelihood_.set_image(y);  // validates y before anything changes
   predict();
   // The existing targets, as predicted: what the births avoid and each component's update sees
@@ -258,22 +259,23 @@ const Tracks& MultiBernoulliFilter::step(const cv::Mat& y) {
   update();
   prune_and_merge();
   resample();
-  manage_tracks();
+  manage_tracks(y, frame);
   // The size prior learnt from this frame's foreground applies from the next frame on.
   update_size_prior();
   ++frame_;
   return tracks_;
 }
 
-void MultiBernoulliFilter::manage_tracks() {
+void MultiBernoulliFilter::manage_tracks(const cv::Mat& y, const cv::Mat& frame) {
   // Beyond the paper (see MultiBernoulliParams): velocity estimates, confirmation, relabelling
-  // from the lost memory, and the reported box transform. Section 4's estimate is the weighted
-  // mean of a component with r > estimate_threshold.
+  // from the lost memory (and by colour), and the reported box transform. Section 4's estimate is
+  // the weighted mean of a component with r > estimate_threshold.
   management_.begin_step(frame_);
   const float alpha = float(params_.velocity_smoothing);
-  bool relabelled = false;
-  tracks_.clear();
-  for (auto& c : components_) {
+  std::vector<std::size_t> estimated;
+  std::vector<Eigen::Vector4f> boxes;
+  for (std::size_t k = 0; k < components_.size(); ++k) {
+    auto& c = components_[k];
     const Eigen::Vector4f m = c.mean();
     if (c.birth_frame < frame_) {  // not born this step: it has a previous estimate
       const Eigen::Vector2f shift = (m.head<2>() + 0.5f * m.tail<2>()) -
@@ -282,10 +284,28 @@ void MultiBernoulliFilter::manage_tracks() {
     }
     c.last_mean = m;
     if (c.existence <= params_.estimate_threshold) continue;
-    if (const auto lost_label = management_.observe(c.label, c.record, m)) {
+    estimated.push_back(k);
+    boxes.push_back(m);
+  }
+  const bool colour = !frame.empty() && params_.management.appearance_rate > 0.0;
+  if (colour) {
+    colour_.measure(frame, y, 0.5f, boxes, seen_);
+  } else {
+    seen_.assign(boxes.size(), {});
+  }
+  std::vector<TrackManager::View> views;
+  for (std::size_t q = 0; q < estimated.size(); ++q) {
+    auto& c = components_[estimated[q]];
+    if (const auto lost_label = management_.observe(c.label, c.record, boxes[q], seen_[q])) {
       c.label = *lost_label;
-      relabelled = true;
     }
+    views.push_back({&c.label, &c.record, boxes[q], &seen_[q]});
+  }
+  if (colour) management_.resolve(views);
+  tracks_.clear();
+  for (std::size_t q = 0; q < estimated.size(); ++q) {
+    auto& c = components_[estimated[q]];
+    const Eigen::Vector4f& m = boxes[q];
     if (!management_.report(c.record, m)) continue;
     TrackEstimate t;
     t.id = c.label;
@@ -294,9 +314,12 @@ void MultiBernoulliFilter::manage_tracks() {
     t.state = m.cast<double>();
     tracks_.push_back(std::move(t));
   }
-  if (relabelled) {
-    // A component that took an old label back is older than its birth suggests: keep
-    // components_ (and the tracks) in label order, which merging and explaining-away rely on.
+  // A component that took an old label back is older than its birth suggests: keep components_
+  // (and the tracks) in label order, which merging and explaining-away rely on.
+  const auto by_label = [](const BernoulliComponent& a, const BernoulliComponent& b) {
+    return a.label < b.label;
+  };
+  if (!std::is_sorted(components_.begin(), components_.end(), by_label)) {
     sort_by_label(components_);
     std::sort(tracks_.begin(), tracks_.end(),
               [](const TrackEstimate& a, const TrackEstimate& b) { return a.id < b.id; });
@@ -519,7 +542,10 @@ void merge_overlapping(std::vector<BernoulliComponent>& components, double min_o
   }
   std::size_t k = 0;
   for (std::size_t i = 0; i < components.size(); ++i) {
-    if (!merged[i]) components[k++] = std::move(components[i]);
+    if (merged[i]) continue;
+    // Not onto itself: a self-move empties the record's vectors (its colour model).
+    if (k != i) components[k] = std::move(components[i]);
+    ++k;
   }
   components.resize(k);
   if (relabelled) sort_by_label(components);

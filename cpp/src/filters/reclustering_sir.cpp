@@ -230,12 +230,13 @@ void ReclusteringSir::initialise() {
 
 void ReclusteringSir::end_object(std::size_t k) { management_.end(objects_[k].label, objects_[k].record); }
 
-const Tracks& ReclusteringSir::step(const cv::Mat& y) {
+const Tracks& ReclusteringSir::step(const cv::Mat& y, const cv::Mat& frame) {
   if (y.cols != width_ || y.rows != height_) {
     throw InvalidArgument("y must be " + std::to_string(height_) + " x " + std::to_string(width_) +
                           " (height x width), got " + std::to_string(y.rows) + " x " +
                           std::to_string(y.cols));
   }
+  if (!frame.empty()) check_colour_frame(frame, y);
   z_ = grid_measurements(y, float(params_.foreground_threshold), grid_);  // validates y
   management_.begin_step(frame_);
   tracks_.clear();
@@ -253,7 +254,7 @@ const Tracks& ReclusteringSir::step(const cv::Mat& y) {
     inject();
     recluster();
     update_estimates();
-    report();
+    report(y, frame);
     resample();
   }
   // The person size learnt from this frame's foreground applies from the next frame on.
@@ -648,7 +649,9 @@ void ReclusteringSir::remove_ended(std::vector<bool>& ended) {
   for (std::size_t k = 0; k < objects_.size(); ++k) {
     if (ended[k]) continue;
     index[k] = int(kept);
-    objects_[kept++] = std::move(objects_[k]);
+    // Not onto itself: a self-move empties the record's vectors (its colour model).
+    if (kept != k) objects_[kept] = std::move(objects_[k]);
+    ++kept;
   }
   objects_.resize(kept);
   for (int& c : clusters_) {
@@ -663,11 +666,20 @@ void ReclusteringSir::remove_ended(std::vector<bool>& ended) {
   zsets_ = std::move(z);
 }
 
-void ReclusteringSir::report() {
+void ReclusteringSir::report(const cv::Mat& y, const cv::Mat& frame) {
   // Each object's estimate as its ellipse's bounding box, through the track manager.
-  for (std::size_t k = 0; k < objects_.size(); ++k) {
+  const std::size_t m = objects_.size();
+  std::vector<Eigen::Vector4f> boxes(m);
+  for (std::size_t k = 0; k < m; ++k) boxes[k] = ellipse_box(objects_[k].estimate);
+  const bool colour = !frame.empty() && params_.management.appearance_rate > 0.0;
+  if (colour) {
+    colour_.measure(frame, y, float(params_.foreground_threshold), boxes, seen_);
+  } else {
+    seen_.assign(m, {});
+  }
+  std::vector<TrackManager::View> views;
+  for (std::size_t k = 0; k < m; ++k) {
     Object& o = objects_[k];
-    const Eigen::Vector4f box = ellipse_box(o.estimate);
     o.record.velocity = o.estimate.segment<2>(2);
     const Eigen::Matrix2Xf& zs = zsets_[k + 1];
     int inside = 0;
@@ -675,11 +687,16 @@ void ReclusteringSir::report() {
       inside += ellipse_d2(o.estimate, zs(0, j), zs(1, j)) <= 1.0f ? 1 : 0;
     }
     o.score = zs.cols() > 0 ? double(inside) / double(zs.cols()) : 0.0;
-    if (const auto lost = management_.observe(o.label, o.record, box)) o.label = *lost;
-    if (!management_.report(o.record, box)) continue;
+    if (const auto lost = management_.observe(o.label, o.record, boxes[k], seen_[k])) o.label = *lost;
+    views.push_back({&o.label, &o.record, boxes[k], &seen_[k]});
+  }
+  if (colour) management_.resolve(views);
+  for (std::size_t k = 0; k < m; ++k) {
+    Object& o = objects_[k];
+    if (!management_.report(o.record, boxes[k])) continue;
     TrackEstimate t;
     t.id = o.label;
-    set_calibrated_box(params_.box, o.estimate[0], o.estimate[1], box[2], box[3], t);
+    set_calibrated_box(params_.box, o.estimate[0], o.estimate[1], boxes[k][2], boxes[k][3], t);
     t.score = o.score;
     t.state = o.estimate.cast<double>();
     tracks_.push_back(std::move(t));

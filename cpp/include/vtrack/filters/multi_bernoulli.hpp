@@ -31,6 +31,7 @@
 #include "vtrack/core/parameters.hpp"
 #include "vtrack/core/random.hpp"
 #include "vtrack/core/resampling.hpp"
+#include "vtrack/filters/appearance.hpp"
 #include "vtrack/filters/person_prior.hpp"
 #include "vtrack/filters/track_management.hpp"
 #include "vtrack/filters/tracks.hpp"
@@ -224,10 +225,12 @@ class MultiBernoulliFilter {
  public:
   MultiBernoulliFilter(int width, int height, const MultiBernoulliParams& params = {});
 
-  // One predict-update cycle on the background-subtracted image y (H x W float32 in [0, 1]).
+  // One predict-update cycle on the background-subtracted image y (H x W float32 in [0, 1]) and,
+  // optionally, the frame it came from (8-bit BGR of y's size; empty: none), whose colours keep
+  // the labels on the people when management.appearance_rate > 0 (TrackManager's appearance).
   // Returns the reported tracks in label order: id = label, the reported box, score = r, state =
   // the filter's own box (x, y, w, h) before the box calibration.
-  const Tracks& step(const cv::Mat& y);
+  const Tracks& step(const cv::Mat& y, const cv::Mat& frame = cv::Mat());
 
   const Tracks& tracks() const { return tracks_; }
   const std::vector<BernoulliComponent>& components() const { return components_; }
@@ -271,8 +274,9 @@ class MultiBernoulliFilter {
   void update_size_prior();
   // Sets size_ and what depends on it: the likelihood's person size and motion_'s sigmas.
   void set_size_prior(const PersonSizePrior& size);
-  // Confirmation, relabelling from the lost memory and velocities; fills tracks_.
-  void manage_tracks();
+  // Confirmation, relabelling from the lost memory (and by the colours of `frame`, when not
+  // empty) and velocities; fills tracks_.
+  void manage_tracks(const cv::Mat& y, const cv::Mat& frame);
 
   MultiBernoulliParams params_;
   int width_;
@@ -302,6 +306,8 @@ class MultiBernoulliFilter {
   BoxParticles::States eps_;
   BoxParticles::States next_;
   Eigen::VectorXd log_g_;
+  ForegroundColour colour_;
+  std::vector<ColourHistogram> seen_;
 };
 
 // Area of the intersection of two boxes (x, y, w, h) over the area of the smaller one; 0 when

@@ -53,7 +53,10 @@
 //   9. estimates: each object's weighted mean ellipse, reported as its bounding box (2a x 2b)
 //      under the object's label for life, through filters::TrackManager (confirmation, lost-track
 //      memory) and the box calibration to the annotation convention (box_scale_*, box_offset_*,
-//      as MultiBernoulliParams).
+//      as MultiBernoulliParams). With the frame (step(y, frame)), the labels follow the people's
+//      colours (TrackManager's appearance, beyond the paper): the objects that come apart after
+//      their boxes overlapped share their labels out by colour and motion, and a re-founded object
+//      takes the lost label whose colours it has. Without it, labels follow the objects.
 //
 // No pixel-size default: every size is relative to the people's height h, learnt from the
 // scene's foreground (models::ForegroundSizeEstimator, as the multi-Bernoulli tracker does), and
@@ -68,6 +71,7 @@
 #include "vtrack/core/parameters.hpp"
 #include "vtrack/core/random.hpp"
 #include "vtrack/core/resampling.hpp"
+#include "vtrack/filters/appearance.hpp"
 #include "vtrack/filters/person_prior.hpp"
 #include "vtrack/filters/track_management.hpp"
 #include "vtrack/filters/tracks.hpp"
@@ -178,7 +182,11 @@ struct ReclusteringSirParams {
   // size_by_row), MOTA / IDF1 with 0.3 -> 0.1: 1-397 0.504 / 0.485 -> 0.502 / 0.527, 398-795
   // 0.686 / 0.494 -> 0.699 / 0.522, all 0.596 / 0.476 -> 0.602 / 0.499 (65 -> 51 track ids for
   // 19 people; 0.05 the same within 0.002; lost_memory 60 or 100 with 0.1: within 0.005).
-  TrackManagementParams management{5, 30, 0.1};
+  // Colour appearance on (appearance_rate 0.05, appearance_sigma 0.15, appearance_distance 1.5;
+  // used when step() is given the frame, as the sir pipeline does): when two people's blobs cover
+  // each other the objects merge or bounce, and the labels went to whichever object was nearer;
+  // the colours give them back (benchmarks/pets09_identity.py has the sweep on frames 1-397).
+  TrackManagementParams management{5, 30, 0.1, 0.0, 0.05, 0.15, 1.5};
   // The reported box: the ellipse's bounding box (2a x 2b) calibrated to the annotation
   // convention, as MultiBernoulliParams' box. Defaults: the medians of the fits of
   // benchmarks/_foreground.py's fit_calibration on PETS09-S2L1 frames 1-397, tracker seeds 0-2
@@ -224,10 +232,12 @@ class ReclusteringSir {
 
   ReclusteringSir(int width, int height, const ReclusteringSirParams& params = {});
 
-  // One step on the background-subtracted image y (H x W float32 in [0, 1], 1 = background).
-  // Returns the reported tracks in id order: the calibrated ellipse bounding box, score N_in / N,
-  // state = the estimate (x, y, vx, vy, a, b).
-  const Tracks& step(const cv::Mat& y);
+  // One step on the background-subtracted image y (H x W float32 in [0, 1], 1 = background) and,
+  // optionally, the frame it came from (8-bit BGR of y's size; empty: none), whose colours keep
+  // the labels on the people when management.appearance_rate > 0 (step 9). Returns the reported
+  // tracks in id order: the calibrated ellipse bounding box, score N_in / N, state = the estimate
+  // (x, y, vx, vy, a, b).
+  const Tracks& step(const cv::Mat& y, const cv::Mat& frame = cv::Mat());
 
   const Tracks& tracks() const { return tracks_; }
   const Particles& particles() const { return particles_; }
@@ -261,7 +271,8 @@ class ReclusteringSir {
   State injection_state(const Eigen::Vector2f& centre);
   void recluster();
   void resample();
-  void report();
+  // Step 9; the objects' colour histograms from `frame` when it is not empty.
+  void report(const cv::Mat& y, const cv::Mat& frame);
   // The engine's reweight with each cluster's log-likelihoods shifted to keep its mass.
   void reweight_per_cluster(Eigen::VectorXd& log_lik);
   void end_object(std::size_t k);
@@ -319,6 +330,8 @@ class ReclusteringSir {
   std::vector<Eigen::Matrix2Xf> zsets_;
   Particles::States eps_, next_;
   std::vector<float> noise_;
+  ForegroundColour colour_;
+  std::vector<ColourHistogram> seen_;  // per object: its histogram at this step
 };
 
 }  // namespace vtrack::filters
