@@ -487,7 +487,7 @@ class ReclusteringSirTracker:
         box_scale_h: float = 0.93,
         box_offset_x: float = 0.01,
         box_offset_y: float = -0.06,
-        box_clip: bool = False,
+        box_clip: bool = True,
         seed: int = 0,
     ) -> None: ...
     def step(
