@@ -77,7 +77,8 @@ from 93 to 85 px): differences there are the runs' divergence. 0.5x's IDF1 is on
 1: 0.682 -> 0.614 on all frames, 0.731 -> 0.601 on 1-397, one identity swap; seeds 0 / 2 0.657
 -> 0.687, 0.684 -> 0.676). On zoom1.25 the reward alone lowered 398-795 (0.559 / 0.614 -> 0.525 /
 0.536), with box_clip it is above the former on MOTA (0.639) and below on IDF1 (0.582): not
-looked into.
+looked into. Held out, run once at the end (benchmarks/pets09.py's RESULTS, seed 0, all frames):
+crop MB 0.393 / 0.420 -> 0.585 / 0.488, zoom 0.386 / 0.388 -> 0.578 / 0.487.
 
 THE DEFAULT (2026-11-25, third session): "row" with a line that needs support.
 
