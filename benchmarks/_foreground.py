@@ -141,6 +141,13 @@ VARIANTS = {
     "zoom": Variant("zoom", 1.5, (192, 144, 768, 576),
                     description="resized 1.5x, central 768 x 576 crop (image as large, people "
                                 "1.5x: a closer camera)"),
+    # Development variants of the crop / zoom work (issue 12): MB's collapse on "crop" and "zoom"
+    # was diagnosed and fixed on these (frames 1-397), so that crop and zoom stay held out.
+    "crop2": Variant("crop2", 1.0, (0, 72, 576, 432),
+                     description="left 576 x 432 crop (people as large, image smaller; "
+                                 "development)"),
+    "zoom1.25": Variant("zoom1.25", 1.25, (48, 36, 768, 576),
+                        description="resized 1.25x, the 768 x 576 crop at (48, 36) (development)"),
 }
 
 

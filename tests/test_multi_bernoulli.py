@@ -177,6 +177,26 @@ def test_two_touching_people_hold_two_tracks_with_the_default_track_management(s
                                    box_offset_y=0.0))
 
 
+@pytest.mark.parametrize("clip", [True, False])
+def test_box_clip_keeps_a_person_half_out_of_view_in_the_image(clip):
+    # A person 12 x 30 px whose left half is out of view, standing at the left border: the
+    # filter's box is the visible half, which the calibration (PETS09's 1.673 x 1.706 by
+    # default) scales about its centre, over the border. Annotations box what is in view, so
+    # with box_clip (MB's default) the reported box ends at the border; without it, it does not.
+    t = vtrack.MultiBernoulliTracker((160, 120), seed=2, width_mean=12, height_mean=30,
+                                     box_clip=clip)
+    for _ in range(12):
+        y = background()
+        y[50:80, 0:6] = 0.1
+        tracks = t.step(y)
+    assert len(tracks) == 1
+    x, _, w, _ = tracks.boxes[0]
+    if clip:
+        assert x == 0.0 and 5.0 < w < 12.0, tracks.boxes
+    else:
+        assert x < -1.0, tracks.boxes
+
+
 def test_all_background_and_all_foreground_no_nan():
     t = vtrack.MultiBernoulliTracker((160, 120), seed=3)
     for y in (np.ones((120, 160), np.float32), np.zeros((120, 160), np.float32)):

@@ -299,8 +299,9 @@ TEST(TbdLikelihood, RowReferenceFitsPeopleOfEverySizeAlike) {
     EXPECT_NEAR(by_row.log_likelihood(b[0], b[1], b[2], b[3]),
                 printed_lik.log_likelihood(b[0], b[1], b[2], b[3]), 1e-4);
   }
-  // With row areas delta_b_row is eq. (20)'s delta_B: the same as the printed one here.
-  row.delta_b_row = image.delta_b;
+  // With row areas a person-sized box earns (1 - ybar) / delta_b_row: as the printed one here
+  // at the middle person's size.
+  row.delta_b_row = 0.35;
   TbdLikelihood weighted(row);
   weighted.set_person_size(0.4 * 160, 160);
   weighted.set_row_areas(areas);

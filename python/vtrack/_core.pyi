@@ -373,7 +373,7 @@ class MultiBernoulliTracker:
         *,
         delta_f: float = 0.1,
         delta_b: float = 0.002,
-        delta_b_row: float = 0.003,
+        delta_b_row: float = 0.52,
         delta_b_reference: Literal["person", "image", "row"] = 'row',
         closing_size: int = 0,
         closing_ratio: float = 0.06,
@@ -419,6 +419,7 @@ class MultiBernoulliTracker:
         box_scale_h: float = 1.706,
         box_offset_x: float = 0.023,
         box_offset_y: float = 0.045,
+        box_clip: bool = True,
         seed: int = 0,
     ) -> None: ...
     def step(
@@ -486,6 +487,7 @@ class ReclusteringSirTracker:
         box_scale_h: float = 0.93,
         box_offset_x: float = 0.01,
         box_offset_y: float = -0.06,
+        box_clip: bool = True,
         seed: int = 0,
     ) -> None: ...
     def step(

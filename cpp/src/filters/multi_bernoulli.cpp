@@ -309,7 +309,10 @@ void MultiBernoulliFilter::manage_tracks(const cv::Mat& y, const cv::Mat& frame)
     if (!management_.report(c.record, m)) continue;
     TrackEstimate t;
     t.id = c.label;
-    set_calibrated_box(params_.box, m[0] + 0.5 * m[2], m[1] + 0.5 * m[3], m[2], m[3], t);
+    if (!set_calibrated_box(params_.box, m[0] + 0.5 * m[2], m[1] + 0.5 * m[3], m[2], m[3],
+                            width_, height_, t)) {
+      continue;
+    }
     t.score = c.existence;
     t.state = m.cast<double>();
     tracks_.push_back(std::move(t));

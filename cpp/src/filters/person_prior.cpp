@@ -1,5 +1,6 @@
 #include "vtrack/filters/person_prior.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -42,7 +43,8 @@ const core::ParameterTable<BoxCalibrationParams>& BoxCalibrationParams::table() 
                                 .add("box_scale_w", &P::box_scale_w)
                                 .add("box_scale_h", &P::box_scale_h)
                                 .add("box_offset_x", &P::box_offset_x)
-                                .add("box_offset_y", &P::box_offset_y);
+                                .add("box_offset_y", &P::box_offset_y)
+                                .add("box_clip", &P::box_clip);
   return table;
 }
 
@@ -53,12 +55,20 @@ void validate(const BoxCalibrationParams& p) {
   require(std::isfinite(p.box_offset_y), "box_offset_y", p.box_offset_y, "finite");
 }
 
-void set_calibrated_box(const BoxCalibrationParams& c, double cx, double cy, double w, double h,
-                        TrackEstimate& t) {
+bool set_calibrated_box(const BoxCalibrationParams& c, double cx, double cy, double w, double h,
+                        int image_width, int image_height, TrackEstimate& t) {
   t.w = w * c.box_scale_w;
   t.h = h * c.box_scale_h;
   t.x = cx + c.box_offset_x * w - 0.5 * t.w;
   t.y = cy + c.box_offset_y * h - 0.5 * t.h;
+  if (!c.box_clip) return true;
+  const double x1 = std::min(t.x + t.w, double(image_width));
+  const double y1 = std::min(t.y + t.h, double(image_height));
+  t.x = std::max(t.x, 0.0);
+  t.y = std::max(t.y, 0.0);
+  t.w = std::max(x1 - t.x, 0.0);
+  t.h = std::max(y1 - t.y, 0.0);
+  return t.w > 0.0 && t.h > 0.0;
 }
 
 PersonHeight::PersonHeight(const PersonSizeParams& params, int image_height)

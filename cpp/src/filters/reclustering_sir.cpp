@@ -696,7 +696,10 @@ void ReclusteringSir::report(const cv::Mat& y, const cv::Mat& frame) {
     if (!management_.report(o.record, boxes[k])) continue;
     TrackEstimate t;
     t.id = o.label;
-    set_calibrated_box(params_.box, o.estimate[0], o.estimate[1], boxes[k][2], boxes[k][3], t);
+    if (!set_calibrated_box(params_.box, o.estimate[0], o.estimate[1], boxes[k][2], boxes[k][3],
+                            width_, height_, t)) {
+      continue;
+    }
     t.score = o.score;
     t.state = o.estimate.cast<double>();
     tracks_.push_back(std::move(t));

@@ -114,23 +114,25 @@ void TbdLikelihood::set_image(const cv::Mat& y) {
   image::close_square(y, closed_, closing_pixels(), 1, &closing_workspace_);
   integral_.compute(closed_);
   // Eq. (20)'s m delta_B, or a delta_B with a the person prior's area (see delta_b).
-  // "row" without row areas is "image" with delta_b (see delta_b_row).
+  // "row" without row areas is "image" with delta_b (see delta_b_row); with them the areas
+  // a(row_i) take m's place, pixel by pixel (set_row_reward).
   row_weighted_ = params_.delta_b_reference == Reference::row && !row_areas_.empty();
   const double area = person ? person_width_ * person_height_ : static_cast<double>(y.total());
-  inv_m_delta_b_ = 1.0 / (area * (row_weighted_ ? params_.delta_b_row : params_.delta_b));
+  inv_m_delta_b_ = row_weighted_ ? 1.0 / params_.delta_b_row : 1.0 / (area * params_.delta_b);
   if (row_weighted_) set_row_reward();
 }
 
 void TbdLikelihood::set_row_reward() {
-  // Each pixel's reward (1 - y_i) a / (a(row_i) m delta_B) (see delta_b: eq. 14's weighted
-  // average), summed over boxes by a second integral image.
+  // Each pixel's reward (1 - y_i) / (a(row_i) delta_B) (see delta_b_row: eq. 14's weighted
+  // average, normalised by the person expected on the row, not by the image), summed over boxes
+  // by a second integral image.
   if (row_areas_.size() != static_cast<std::size_t>(closed_.rows)) {
     throw InvalidArgument("the likelihood's row areas cover " + std::to_string(row_areas_.size()) +
                           " rows, the image has " + std::to_string(closed_.rows));
   }
   reward_.create(closed_.size(), CV_32FC1);
   for (int r = 0; r < closed_.rows; ++r) {
-    const double weight = person_width_ * person_height_ / row_areas_[std::size_t(r)];
+    const double weight = 1.0 / row_areas_[std::size_t(r)];
     const auto c = static_cast<float>(weight * inv_m_delta_b_);
     const float* in = closed_.ptr<float>(r);
     float* out = reward_.ptr<float>(r);

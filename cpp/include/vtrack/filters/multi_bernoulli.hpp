@@ -181,8 +181,9 @@ struct MultiBernoulliParams {
   // calibration (filters/person_prior.hpp). Defaults: the medians of the calibration fits on
   // PETS09-S2L1 frames 1-397 of tracker seeds 0-2 with the "row" defaults
   // (benchmarks/mb_perspective.py --calibrate: 1.665-1.685 x 1.698-1.720, offsets 0.009-0.027,
-  // 0.034-0.053; with the former "image" defaults the fit was 1.75 x 1.47, -0.01, -0.01).
-  BoxCalibrationParams box{1.673, 1.706, 0.023, 0.045};
+  // 0.034-0.053; with the former "image" defaults the fit was 1.75 x 1.47, -0.01, -0.01), and
+  // clipped to the image (box_clip).
+  BoxCalibrationParams box{1.673, 1.706, 0.023, 0.045, true};
 
   // The filter's random engine (prediction noise, births, resampling): the same seed gives the
   // same tracks.

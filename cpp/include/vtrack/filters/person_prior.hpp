@@ -47,20 +47,27 @@ void validate(const PersonSizeParams& params);
 // (box_scale_w, box_scale_h) and its centre moved by (box_offset_x w, box_offset_y h). Only the
 // output changes, never the filter's state. Each tracker sets its own defaults (the medians of
 // the fits of benchmarks/pets09.py's calibration); 1, 1, 0, 0 reports the tracker's own box.
+// With box_clip the reported box is then clipped to the image, as annotations box what is in
+// view (PETS09-S2L1's MOT15 boxes all lie within the image's columns): the scaled box of a
+// person half out of view reaches beyond the border, by more the larger the people are relative
+// to the image (benchmarks/mb_perspective.py, CROPS).
 struct BoxCalibrationParams {
   double box_scale_w = 1.0;
   double box_scale_h = 1.0;
   double box_offset_x = 0.0;
   double box_offset_y = 0.0;
+  bool box_clip = false;
 
   static const core::ParameterTable<BoxCalibrationParams>& table();
 };
 
 void validate(const BoxCalibrationParams& params);
 
-// Sets t's box (x, y, w, h) from the tracker's box centred at (cx, cy) of size w x h.
-void set_calibrated_box(const BoxCalibrationParams& calibration, double cx, double cy, double w,
-                        double h, TrackEstimate& t);
+// Sets t's box (x, y, w, h) from the tracker's box centred at (cx, cy) of size w x h, clipped
+// to the image_width x image_height image with box_clip. Returns false when nothing of the box
+// is left in the image (then the track is not reported).
+bool set_calibrated_box(const BoxCalibrationParams& calibration, double cx, double cy, double w,
+                        double h, int image_width, int image_height, TrackEstimate& t);
 
 // The person height in force: height_mean when given, else size_initial x the image height
 // until the foreground has shown enough evidence, then the learnt height.

@@ -71,20 +71,24 @@ struct TbdLikelihoodParams {
   // PETS09's share, and cleaner y) "person" 0.35 gave 0.618 / 0.803 against 0.938 / 0.968 with
   // "image" 2e-3: a person-relative reward needs another value there, so it is not the default.
   //
-  // With delta_b_reference "row", eq. (20) as printed ("image", with delta_b_row for delta_B)
-  // with each pixel i's unit of 1 - y_i weighted by a / a(row_i): a the prior's mean person area
-  // (set_person_size) and a(row) the area of the person the prior expects centred on that row
-  // (the tracker's person height line by foot row, set_row_areas; without one it is exactly
-  // "image" with delta_b). Why: with "image" or "person" the reward grows with the box's pixel
-  // count m_x while the penalty -ybar / delta_F does not, so the best box takes a strip of mean
-  // y_s iff y_s < (k + ybar) / (1 + k) with k = m_x delta_F / (m delta_B): 0.14 for a 60 px
-  // PETS09 person (boxes shrink to the dark core) and 0.73 for a 130 px one (boxes reach over
-  // grey background), so one box calibration cannot fit both. With "row", k = m_x a delta_F /
-  // (a(row) m delta_B) is the same for every person-sized box, the value "image" gives the mean
-  // person. It is eq. (14)'s "weighted average" with the pixel weights 1 / a(row_i) (delta_B
-  // absorbing their scale): the weights do not depend on the state X, so eqs. (15)-(20) go
-  // through unchanged with m_x (1 - ybar) replaced by sum_{i in T(x)} (1 - y_i) a / a(row_i),
-  // and f(y) still cancels. (A normaliser taken at each box's own row instead would make g_B
+  // With delta_b_reference "row", eq. (20) with the image's pixel count m replaced pixel by pixel
+  // by a(row_i), the area of the person the prior expects centred on that row (the tracker's
+  // person height line by foot row, set_row_areas; without one it is exactly "image" with
+  // delta_b), and delta_b_row for delta_B: each pixel earns (1 - y_i) / (a(row_i) delta_b_row),
+  // so a person-sized box of mean ybar earns about (1 - ybar) / delta_b_row nats on every row,
+  // at every resolution and whatever the people's share of the image. Why: with "image" or
+  // "person" the reward grows with the box's pixel count m_x while the penalty -ybar / delta_F
+  // does not, so the best box takes a strip of mean y_s iff y_s < (k + ybar) / (1 + k) with
+  // k = m_x delta_F / (m delta_B): 0.14 for a 60 px PETS09 person (boxes shrink to the dark
+  // core) and 0.73 for a 130 px one (boxes reach over grey background), so one box calibration
+  // cannot fit both. With "row", k = m_x delta_F / (a(row) delta_b_row) is the same for every
+  // person-sized box. It is eq. (14)'s "weighted average" with the pixel weights 1 / a(row_i)
+  // (delta_B absorbing their scale): the weights do not depend on the state X, so eqs.
+  // (15)-(20) go through unchanged with m_x (1 - ybar) / m replaced by sum_{i in T(x)} (1 - y_i)
+  // / a(row_i), and f(y) still cancels. (Until 2026-11-28 the weights were a / (a(row_i) m), a
+  // the prior's mean person area: k then grew with the people's share of the image, 2.25 times
+  // PETS09's on its central 512 x 384 crop and its 1.5x zoom, where boxes grew over ghosts and
+  // pairs and MB's MOTA fell from 0.61 to 0.39; benchmarks/mb_perspective.py, CROPS.) (A normaliser taken at each box's own row instead would make g_B
   // depend on X beyond eq. (13)'s fill, and its gradient in the box's row would pull boxes up the
   // image, towards smaller a.) The price: inside one box the upper rows weigh more than the lower
   // ones, so the best box reaches a little further up than down (in the unit test 0.58 of the
@@ -92,12 +96,14 @@ struct TbdLikelihoodParams {
   // The multi-Bernoulli tracker uses it with size_by_row only.
   double delta_b = 2e-3;
   // The delta_B of the "row" reference while row areas are set (a person height line is in
-  // force); without them "row" is "image" with delta_b, exactly: a scene that shows no
+  // force), per person area: a person-sized box of mean ybar earns about (1 - ybar) /
+  // delta_b_row. Without row areas "row" is "image" with delta_b, exactly: a scene that shows no
   // perspective (one person size, or too few people to fit a line) is tracked as with the
-  // printed eq. (20) and its tuned delta_b. 3e-3 was chosen on PETS09-S2L1 frames 1-397 among
-  // 2e-3 and 3e-3 (benchmarks/mb_perspective.py): "row" weights the mean person's pixels as
-  // "image" does, and the larger delta_B cut the far people's false positives of the first half.
-  double delta_b_row = 3e-3;
+  // printed eq. (20) and its tuned delta_b. 0.52 is the 3e-3 per image pixel chosen on PETS09-S2L1
+  // frames 1-397 among 2e-3 and 3e-3 (benchmarks/mb_perspective.py; the larger delta_B cut the
+  // far people's false positives of the first half) for its 30 x 85 px mean person at 768 x 576
+  // (3e-3 x 442368 / 2550).
+  double delta_b_row = 0.52;
   enum class DeltaBReference { image, person, row };
   DeltaBReference delta_b_reference = DeltaBReference::image;
   // Side of the square structuring element of the morphological closing of y (Section 3.2), which
