@@ -262,6 +262,36 @@ def test_far_views_do_not_shrink_a_vehicle_under_a_gantry(tmp_path):
             assert errors["car3"] < -3.0, errors
 
 
+def test_outlying_views_are_left_out_of_the_answer(scene, camera, silhouettes):
+    """Every 5th view of each vehicle replaced by its outline joined with a copy of itself 0.6 of
+    its image height higher (a vehicle stacked behind it in one blob, as the blob tracker sees
+    them): with every view in the product of the rays (outlier_gate 0) the cars come out up to
+    0.4-0.6 m too tall; the default refit without views whose ray lies more than 3 sigma of S from
+    the fit gives back the answer of the clean views alone (an independent run) and does not count
+    the views it left out."""
+    import cv2
+
+    def joined(poly):
+        h = poly[:, 1].max() - poly[:, 1].min()
+        both = np.vstack([poly, poly + [0.0, -0.6 * h]]).astype(np.float32)
+        return cv2.convexHull(both).reshape(-1, 2).astype(float)
+
+    dirty = [(f, vid, joined(poly) if (f // 2) % 5 == 0 else poly) for f, vid, poly in silhouettes]
+    clean = {e["vehicle_id"]: e for e in run(camera, silhouettes)}
+    every = {e["vehicle_id"]: e for e in run(camera, dirty, outlier_gate=0.0)}
+    refit = {e["vehicle_id"]: e for e in run(camera, dirty)}
+    truth = {v.id: v for v in scene.vehicles}
+    light = [i for i in clean if not truth[i].heavy]
+    assert max(every[i]["H"] - clean[i]["H"] for i in light) > 0.35
+    for i in clean:
+        assert (refit[i]["light_heavy"] == "heavy") == truth[i].heavy, (truth[i].cls, refit[i])
+        if i in light:
+            assert abs(refit[i]["H"] - clean[i]["H"]) < 0.15, (truth[i].cls, clean[i], refit[i])
+            assert abs(refit[i]["L"] - clean[i]["L"]) < 0.3, (truth[i].cls, clean[i], refit[i])
+        assert refit[i]["frames_used"] <= every[i]["frames_used"]
+    assert sum(refit[i]["frames_used"] < every[i]["frames_used"] for i in light) >= 3
+
+
 def test_resolution_cut_keeps_a_low_cameras_best_views():
     """The low mast (6 m, pitch 12 deg) at a third of its resolution (320x180, focal 300 px), heavy
     traffic, exact silhouettes: a tall vehicle's far roof corner lands tens of metres down the
