@@ -222,6 +222,110 @@ Seeds 600 and 900, once each, 20 vehicles per set-up (rendering time; `--video-v
 Wrong: 600 mast_low a van as heavy, a truck and a bus as light; 600 side a truck as light; 900 side
 a car as heavy. Seed 600 (a quarter heavies) is the hardest draw: mast_low's heavies and found
 on mast_low and side are the gaps; the naive 2-D oracle ties on side and mast_high.
+
+Issue 13, front end or estimator (this session; tuning seeds 100, 300, 700 only, 40 vehicles, all
+five set-ups, 600 vehicles; scored as Table 2 scores). Start: found 594/600, light 481/484, heavy
+105/110, MAE W H L 0.20 0.11 0.65 m, 687 reported. For each of the 14 failures (6 missed, 3 light
+and 5 heavy wrong) the estimator was also fed the generator's exact silhouettes (silhouettes.csv,
+whole even where a nearer vehicle hides part) of that vehicle: over its passage, the defaults
+call all 14 right, and over just the frames of the track that was scored, every one that had
+such frames; so the estimator and its decision rule are not what fails, the outlines reaching it
+are. By the views of the scored track (IoU with the
+vehicle's true box): 7 failures are two or more vehicles in one blob for most of a track with no
+clean view (side 300 x2, side 700 x4: cars side by side in lanes 0 and 1; mast_low 100: a bus with
+the car ahead of it showing above its roof); 4 a track passing from one vehicle to another where a
+blob splits (mast_low 100 car 9, gantry 100 car 38 and the articulated lorry 39 behind it,
+gantry 300 car 19: a near car and the far vehicle stacked above it in the image are one blob, the
+track follows the car's foot, and when the blob parts the track jumps to the far vehicle's, its
+lowest point 30-35 m further down the road, or coasts and takes the wrong one); 3 a fragment of a
+heavy vehicle's passage with poor views winning the match (gantry 100 bus: a receding track that
+ran into a background ghost near the horizon; wide_distorted 100 articulated lorry: the same,
+while its clean views went to the joined estimator, a one-frame track of its own first sliver
+coasting inside it; mast_low 300 articulated lorry: 46 views of which 10 carry another vehicle's
+pixels, L 2.5 m); 1 a mostly clean track with a minority of such views (gantry 700 van: 23 of 151,
+L 8.4 m, heavy). In the last two kinds the least-squares product of the rays is pulled far off by
+a few views: gantry 700's truck after the change below, 80 clean views and 14 contaminated ones,
+came out L 1.1 m; its clean views alone 6.9 m.
+Changes (library): the blob tracker's foot gate (apps/vehicles.hpp, foot_gate 0.5: a blob whose
+lowest point lies more than half the track's predicted image height, plus a pixel, from the image
+of the track's predicted ground point does not continue it; a ratio of the vehicle's own image
+size) and the
+estimator's outlier refit ("rays": the answer refitted twice without views whose ray lies more than
+outlier_gate = 3 sigma of S from the fit; filters/vehicle_dimensions.hpp). Tuning totals (found /
+light / heavy / MAE W H L m / reported; /tmp prototype of the pipeline on the KDE masks of the
+same videos, equal to measure_vehicles on mast_low and gantry 100: 40/40 31/31 9/9 and 39/40
+30/30 8/9, MAE and reported identical):
+  before                         594  481/484  105/110  0.20 0.11 0.65  687
+  refit alone                    594  481/484  105/110  0.19 0.11 0.63  687
+  foot gate 0.25 alone           598  487/488  105/110  0.20 0.11 0.71  829
+  foot gate 0.35 alone           597  485/487  104/110  0.19 0.11 0.61  729
+  foot gate 0.5 alone            596  483/486  105/110  0.20 0.11 0.61  710
+  foot gate 0.35 + refit         597  485/487  105/110  0.19 0.11 0.60  729
+  foot gate 0.5 + refit          596  483/486  107/110  0.19 0.11 0.58  710
+  the same + 1 px (kept)         596  483/486  107/110  0.19 0.11 0.58  715
+  foot gate 0.75 + refit         594  483/485  105/109  0.19 0.11 0.61  686
+(the refit in Python, re-feeding the kept views, with gate 0.5: 596 484/486 108/110 0.19 0.11 0.60.)
+Kept: 0.5 + refit, fewer extra tracks than 0.35 at the same number of failures (10) and two more
+heavies. The pixel was added after the first held-out run below, for tests/test_vehicle_estimator.py
+at 160x90: blobs 2 px tall at the image's top edge made the gate finer than the pixel grid and cut
+a car's track in two (a second track, not in view); tuning totals unchanged, 5 more reported. Also
+a cost seen in that file's gantry test (480x270, three vehicles receding as one blob that never
+parts): with the gate the car's track keeps the union (its lowest point is the car's) and the IoU
+match scores the union as the truck, so the car counts as not found there (estimates unchanged);
+that test, about the resolution cut, runs with foot_gate 0. Kept anyway: on the tuning scenes the
+gate fixed more such identity errors than it made. Per set-up after (foot gate 0.5 + refit, before
+the pixel; found / light / heavy / MAE W H L): mast_low 100 40/40 31/31 9/9
+0.28 0.12 1.00, gantry 100 39/40 30/30 8/9 0.20 0.26 0.97, side 100 40/40 31/31 9/9, wide 100
+40/40 31/31 9/9, mast_high 100 40/40 31/31 9/9; mast_low 300 40/40 30/30 10/10 0.20 0.05 0.82,
+gantry 300 39/40 29/29 9/10, side 300 39/40 29/29 10/10, wide 300 40/40 30/30 9/10, mast_high 300
+40/40 30/30 10/10; seed 700 (3 heavies each) 40/40 37/37, 40/40 36/37, 39/40 34/36, 40/40 37/37,
+40/40 37/37. Fixed: mast_low 100 bus and car 9, wide_distorted 100 and mast_low 300 articulated
+lorries, side 700 car 22 found (as not fully in view); new failures: a truck of gantry 300 and one
+of wide_distorted 300 called light. Left: the side-by-side pairs of side 300/700 (one blob all along), the stacked
+pairs of gantry 100/300 whose joint outline is scored as the far vehicle, the gantry 700 van.
+Tried and not kept (same totals): marking a blob joined only when the small track's predicted box
+sticks out of the large one's (594 482/484 100/110 0.72); only confirmed tracks as merge or join
+members (595 483/486 103/109 0.66); skipping a view whose rectified box repeats the last used one
+(a repeated quantisation error is no new evidence; 594 482/484 103/110 0.67); outlines along pixel
+edges (each vertex moved to its pixel's outer corner; 594 482/484 104/110 0.66); the KDE's
+update_static (594 482/484 105/110 0.67, 690 reported); the refit in Python without the foot gate
+(594 482/484 104/110 0.65); reporting a vehicle whose used rays leave a direction undetermined
+(1/sqrt(lambda_min(sum P S^-1 P)) > 2 m) as not fully in view: 91/110 heavies (many heavies are
+found only from the distance), or taking the joined views' estimate then: 102/110.
+Held out, seeds 1100 and 1300 (rendered by the last session, not looked at before this one's
+changes were chosen), 40 vehicles, five set-ups: `python benchmarks/vehicles.py --video-only
+--video-vehicles 40 --video-seed 1100|1300 --video-setups mast_low gantry side wide_distorted
+mast_high --scene-dir DIR`, and the same with `--video-set foot_gate=0.0 outlier_gate=0.0` for
+"before". Three runs, all after the choice on the tuning scenes: the final defaults; the first run
+(foot gate without the pixel, which was added after it for a unit test, see above); before. Found
+/ light / heavy / MAE W H L m / reported / naive 2-D light / heavy at its oracle threshold (same
+run as the final):
+  1100 mast_low        final 38/40 32/32 5/6 0.26 0.13 0.89 54  first 38/40 32/32 6/6 55  before 38/40 32/32 5/6 0.27 0.13 0.97 52  naive 59.4 / 100 %
+  1100 gantry          final 40/40 34/34 5/6 0.15 0.20 1.04 55  first 40/40 34/34 5/6 56  before 40/40 34/34 5/6 0.16 0.23 1.07 52  naive 58.8 / 100 %
+  1100 side            final 37/40 30/31 6/6 0.24 0.20 0.61 43  first 37/40 30/31 6/6 43  before 36/40 29/30 6/6 0.25 0.19 0.70 42  naive 100 / 100 %
+  1100 wide_distorted  final 39/40 33/34 4/5 0.26 0.20 0.91 52  first 39/40 33/34 4/5 52  before 39/40 33/34 4/5 0.26 0.23 0.99 49  naive 85.3 / 100 %
+  1100 mast_high       final 38/40 32/32 5/6 0.23 0.16 0.70 44  first 38/40 32/32 5/6 46  before 38/40 32/32 5/6 0.27 0.21 0.87 41  naive 100 / 100 %
+  1300 mast_low        final 40/40 33/33 6/7 0.19 0.07 0.80 51  first the same         before 40/40 31/33 6/7 0.33 0.12 1.34 53  naive 87.9 / 100 %
+  1300 gantry          final 40/40 33/33 6/7 0.15 0.19 0.88 47  first the same         before 40/40 33/33 5/7 0.16 0.26 1.02 46  naive 81.8 / 85.7 %
+  1300 side            final 40/40 33/33 7/7 0.18 0.07 0.27 46  first 40/40 33/33 7/7 45  before 40/40 33/33 7/7 0.18 0.07 0.25 45  naive 100 / 100 %
+  1300 wide_distorted  final 40/40 33/33 6/7 0.17 0.18 0.54 45  first the same         before 40/40 32/33 6/7 0.21 0.20 0.60 49  naive 93.9 / 100 %
+  1300 mast_high       final 40/40 33/33 6/7 0.14 0.11 0.52 42  first the same         before 40/40 33/33 6/7 0.14 0.11 0.51 43  naive 100 / 100 %
+Totals, final: found 392/400 (98.0 %), light 326/328 (99.4 %), heavy 56/64 (87.5 %), 479
+reported; first: 392/400, 326/328, 57/64, 482; before: 391/400, 322/327 (98.5 %), 55/64 (85.9 %),
+472. Wrong, final: trucks called light on every set-up but side (6), a bus (gantry 1300) and an
+articulated lorry (mast_low 1100) called light, a van and a car called heavy (wide_distorted,
+side 1100), a car not fully in view (side 1100; score() counts a light vehicle with no estimate
+as light, so it is not in the 2 light errors). The bar is met for found (98.0 %) and light
+(99.4 %) over the two seeds but not per set-up (found 92-95 % on side, mast_low and mast_high
+1100) and not for heavy vehicles (87.5 % against 99 %): heavies called light are what is left,
+as on the tuning scenes (the diagnosis above: outlines of two vehicles, fragments). vtrack beats
+the naive 2-D oracle on mast_low, gantry and wide_distorted light vehicles; the oracle (its
+threshold chosen on the very data) ties or wins on side and mast_high and on heavies.
+Estimator cost with the refit (exact silhouettes of even frames, update() from Python, CPU time,
+median of 3, machine shared; /tmp script): gantry 300, 3404 vehicle-frames: update() 19.3 us per
+vehicle-frame with outlier_gate 0 and 3, estimates() (where the refit runs, once per vehicle)
+0.1 us per vehicle-frame more; mast_high 100, 1739: 21.8 / 25.0 us (gate 0 / 3; the refit is not
+in update(), so that difference is the machine's), estimates() 0.1 us. Under the 0.1 ms bar.
 """
 
 import argparse

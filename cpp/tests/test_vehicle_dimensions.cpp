@@ -138,6 +138,14 @@ TEST(VehicleSamplers, RaysMatchesTheClosedFormPosteriorOfAllFrames) {
   for (int j = 1; j < 5; ++j) {
     EXPECT_NEAR(sums.log_likelihood(x.col(j)) - sums.log_likelihood(x.col(0)), direct(j) - direct(0), 1e-8);
   }
+  // With the constant c the sums give -2 log p(z | x) itself, and one view's term the squared
+  // distance from x to its ray (models::ray_distance, the Plücker projection) in units of S's sigma
+  // (the outlier refit's measure).
+  for (int j = 0; j < 5; ++j) EXPECT_NEAR(sums.squared_distance(x.col(j)), -2.0 * direct(j), 1e-6 * (1.0 - direct(j)));
+  filters::RaySums one;
+  one.add(views.front(), p.likelihood);
+  const Eigen::VectorXd d = models::ray_distance(views.front(), x) / p.likelihood.sigma_w;
+  for (int j = 0; j < 5; ++j) EXPECT_NEAR(one.squared_distance(x.col(j)), d(j) * d(j), 1e-6 * (1.0 + d(j) * d(j)));
 }
 
 // The samplers with a previous posterior against a brute-force grid of the target: for "ray" the

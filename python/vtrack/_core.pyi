@@ -771,6 +771,7 @@ class VehicleDimensionEstimator:
         border_margin_px: float = 1.0,
         max_length_resolution: float = 0.0,
         length_resolution_factor: float = 4.0,
+        outlier_gate: float = 3.0,
         seed: int = 0,
     ) -> None: ...
     def update(self, vehicle_id: int, silhouette: ArrayLike, frame: Optional[int] = None) -> bool: ...

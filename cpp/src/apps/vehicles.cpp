@@ -154,6 +154,7 @@ const core::ParameterTable<VehicleBlobParams>& VehicleBlobParams::table() {
                             .add("min_area", &P::min_area)
                             .add("min_overlap", &P::min_overlap)
                             .add("merge_min_share", &P::merge_min_share)
+                            .add("foot_gate", &P::foot_gate)
                             .add("lost_memory", &P::lost_memory)
                             .add("confirm_frames", &P::confirm_frames);
   return t;
@@ -168,6 +169,8 @@ void validate(const VehicleBlobParams& p) {
   require(p.min_overlap > 0.0 && p.min_overlap <= 1.0, "min_overlap", p.min_overlap, "in (0, 1]");
   require(p.merge_min_share >= 0.0 && p.merge_min_share <= 1.0, "merge_min_share",
           p.merge_min_share, "in [0, 1]");
+  require(p.foot_gate >= 0.0 && std::isfinite(p.foot_gate), "foot_gate", p.foot_gate,
+          "a finite number >= 0 (a share of the predicted box's height; 0: off)");
   require(p.lost_memory >= 0 && p.lost_memory <= 1000, "lost_memory", p.lost_memory, "in [0, 1000]");
   require(p.confirm_frames >= 1 && p.confirm_frames <= 1000, "confirm_frames", p.confirm_frames, "in [1, 1000]");
 }
@@ -347,6 +350,22 @@ cv::Rect2d predicted(const BlobTrack& t, long long frame, const models::Camera& 
   return {f + s * (t.ground_box.tl() - t.foot), cv::Size2d(s * t.ground_box.width, s * t.ground_box.height)};
 }
 
+// Whether blob b's lowest point agrees with track t's road prediction (header: foot_gate): within
+// gate x the predicted box's height vertically and gate x its larger side horizontally of the image
+// of the predicted ground point, plus one pixel each way (the foot's row, the mean x of that row and
+// the box the prediction scales from are whole pixels: on a blob 2 px tall the gate alone would be
+// finer than the grid). True when either has no ground point (a new track, a silhouette cut by the
+// border) or the gate is off.
+bool foot_agrees(const BlobTrack& t, const Blob& b, const cv::Rect2d& pred, long long frame,
+                 const models::Camera& camera, double gate) {
+  if (gate <= 0.0 || !b.has_ground || !t.ground.has_velocity() || t.ground_frame != t.last_matched) return true;
+  const Eigen::Vector2d foot = camera.road_to_image_points(t.ground.at(frame)).col(0);
+  if (!foot.allFinite()) return true;
+  constexpr double kPixel = 1.0;
+  return std::fabs(foot.y() - b.foot.y) <= gate * pred.height + kPixel &&
+         std::fabs(foot.x() - b.foot.x) <= gate * std::max(pred.width, pred.height) + kPixel;
+}
+
 // Continues track t with blob b at `frame` (the image and the road motion).
 void continue_track(BlobTrack& t, const Blob& b, long long frame) {
   const cv::Rect2d box(b.box);
@@ -387,7 +406,8 @@ double label_share(const cv::Mat& labels, int label, const cv::Rect2d& box) {
 // cover half or more of a smaller track's predicted box is joined with that vehicle: the blob
 // goes to its track, the small one coasts, and the blob's outline is marked as no one cuboid's.
 // Other blobs continue the track whose predicted box they overlap most (greedy in decreasing
-// intersection over union, >= min_overlap) or start one.
+// intersection over union, >= min_overlap) and whose predicted foot they agree with (foot_gate), or
+// start one.
 std::vector<Assignment> associate(std::vector<BlobTrack>& tracks, const std::vector<Blob>& blobs,
                                   const cv::Mat& labels, long long frame, const VehicleBlobParams& p,
                                   const models::Camera& camera, int& next_id) {
@@ -421,7 +441,9 @@ std::vector<Assignment> associate(std::vector<BlobTrack>& tracks, const std::vec
   for (std::size_t b = 0; b < blobs.size(); ++b) {
     for (std::size_t t = 0; t < tracks.size() && !out[b].merged; ++t) {
       const double iou = overlap(cv::Rect2d(blobs[b].box), pred[t]);
-      if (!taken[t] && iou >= p.min_overlap) pairs.push_back({iou, b, t});
+      if (!taken[t] && iou >= p.min_overlap && foot_agrees(tracks[t], blobs[b], pred[t], frame, camera, p.foot_gate)) {
+        pairs.push_back({iou, b, t});
+      }
     }
   }
   std::stable_sort(pairs.begin(), pairs.end(), [](const Pair& x, const Pair& y) { return x.iou > y.iou; });

@@ -64,6 +64,15 @@
 //     view, so the last posterior is always the one given exactly the used views. (For the x*
 //     samplers a dropped frame's chain has already shaped x* of the next frames.) update() thus
 //     says whether a frame is used so far; frames_used is the final count.
+//   * outlying views ("rays", outlier_gate): the product of the rays is a least-squares fit, and a
+//     minority of outlines that are not the vehicle's alone (another vehicle's pixels joined to
+//     it, a part hidden by a nearer one) pulls it far off, down to a length at min_size (the
+//     figures: benchmarks/vehicles.py). So the answer is refitted without the views whose ray
+//     lies farther than outlier_gate from the fitted dimensions, in the likelihood's own units
+//     (the Mahalanobis distance under S across the ray: 3 = 0.75 m with the default S), twice,
+//     keeping the fit when no view or every view would go: a trimmed least squares. The frames
+//     left out are not counted in frames_used. 0 = off. The per-frame posteriors (update(),
+//     posterior()) are not refitted; only the answer (estimate()) is.
 //   * the per-vehicle decision (decision): "mean" averages the per-frame point estimates and the
 //     per-frame class probabilities over the used frames (every full view counts once: with the x*
 //     variants a frame's posterior remembers the earlier ones only through x*); "last" takes the
@@ -138,6 +147,9 @@ struct VehicleEstimatorParams {
   // views a fixed 2 m dropped (benchmarks/vehicles.py, tuning seeds: the tables are there).
   double max_length_resolution = 0.0;
   double length_resolution_factor = 4.0;
+  // "rays": views whose ray lies farther than this from the fit (Mahalanobis under S) are left out
+  // of the answer (see "outlying views" above); 0 = every used view.
+  double outlier_gate = 3.0;
   std::uint64_t seed = 0;
 
   static const core::ParameterTable<VehicleEstimatorParams>& table();
@@ -158,11 +170,15 @@ struct VehiclePosterior {
 struct RaySums {
   Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
   Eigen::Vector3d g = Eigen::Vector3d::Zero();
+  double c = 0.0;  // sum a_k^T P_k S^-1 P_k a_k, so that the sums give the squared distance itself
   int frames = 0;
   void add(const models::VehicleObservation& obs, const models::RayLikelihoodParams& likelihood);
   void add(const RaySums& other);
   // -1/2 (x^T A x - 2 g^T x): the log of the product of the added ray likelihoods, up to a constant.
   double log_likelihood(const Eigen::Vector3d& x) const { return -0.5 * x.dot(A * x) + g.dot(x); }
+  // x^T A x - 2 g^T x + c: for one view's term, the squared Mahalanobis distance (under S) of x
+  // from its ray.
+  double squared_distance(const Eigen::Vector3d& x) const { return x.dot(A * x) - 2.0 * g.dot(x) + c; }
 };
 
 // One frame of §3.3's samplers: the posterior at this frame given the previous one (nullptr at
@@ -221,6 +237,7 @@ class VehicleDimensionEstimator {
     RaySums rays;
   };
   double resolution_bound(double best) const;
+  int refit_without_outliers(const Track& t, VehiclePosterior& post) const;
   void drop_coarse_views(Track& t) const;
   Track& track(int vehicle_id, int frame);
   bool touches_border(const Eigen::Ref<const Eigen::Matrix2Xd>& polygon) const;
