@@ -83,12 +83,12 @@ void write_vehicles_csv(const std::string& path, const std::vector<filters::Vehi
 // to a second estimator whose answer is used only for a vehicle with no clean view.
 // A blob continues a track with a road prediction only if its lowest point lies within foot_gate
 // of the track's predicted box height (and of its larger side across), plus a pixel of
-// quantisation, from the image of the track's predicted ground point: a vehicle's nearest bottom corner moves by a pixel or two per
-// frame, so a jump of half its own image height is another vehicle's foot -- a blob that lost or
-// gained a vehicle stacked with it in the image (a near car below a far lorry under the gantry). It
-// then starts a track of its own instead of switching this one to the other vehicle and bending
-// its road line. A ratio of the vehicle's own image size: the same at any resolution
-// (benchmarks/vehicles.py: the values tried).
+// quantisation, from the image of the track's predicted ground point: a vehicle's nearest bottom
+// corner moves by a pixel or two per frame, so a jump of half its own image height is another
+// vehicle's foot -- a blob that lost or gained a vehicle stacked with it in the image (a near car
+// below a far lorry under the gantry). It then starts a track of its own instead of switching
+// this one to the other vehicle and bending its road line. A ratio of the vehicle's own image
+// size: the same at any resolution (benchmarks/vehicles.py: the values tried).
 // Vehicles side by side at the same speed for their whole passage stay one blob: one track, the
 // estimator fed a two-vehicle outline (a limitation; benchmarks/vehicles.py counts it). A track
 // matched in fewer than confirm_frames frames is not reported (a flicker of the background).
@@ -104,7 +104,7 @@ struct VehicleBlobParams {
   int min_area = 0;                   // pixels: 0 = auto (150 at f = 900, times (f / 900)^2)
   double min_overlap = 0.2;           // intersection over union to continue a track
   double merge_min_share = 0.2;       // a merge member's predicted box area / the blob box's (above)
-  double foot_gate = 0.5;             // the blob's foot off the predicted one / the predicted box's height; 0 = off
+  double foot_gate = 0.5;             // foot off the predicted one / predicted height (above); 0 = off
   int lost_memory = 5;                // frames a track may go unmatched (it coasts through merges)
   int confirm_frames = 3;             // matched frames for a track to be a vehicle
 
