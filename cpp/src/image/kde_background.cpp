@@ -120,7 +120,6 @@ void KdeBackground::reset() {
   samples_.clear();
   samples_.shrink_to_fit();
   sample_frame_.clear();
-  sample_mean_s_.clear();
   count_ = 0;
   next_slot_ = 0;
   skips_.release();
@@ -145,7 +144,6 @@ void KdeBackground::store_sample(const cv::Mat& bgr, const cv::Mat& keep) {
   if (samples_.empty()) {
     samples_.resize(area * 3 * static_cast<std::size_t>(params_.n_samples));
     sample_frame_.assign(static_cast<std::size_t>(params_.n_samples), -1);
-    sample_mean_s_.assign(static_cast<std::size_t>(params_.n_samples), 0.0);
   }
   const int slot = next_slot_;
   std::vector<cv::Mat> planes;
@@ -162,12 +160,43 @@ void KdeBackground::store_sample(const cv::Mat& bgr, const cv::Mat& keep) {
     }
   }
   sample_frame_[slot] = frame_index_;
-  if (params_.illumination_compensation) {
-    const cv::Scalar m = cv::mean(planes[0]) + cv::mean(planes[1]) + cv::mean(planes[2]);
-    sample_mean_s_[slot] = m[0];
-  }
   next_slot_ = (slot + 1) % params_.n_samples;
   count_ = std::min(count_ + 1, params_.n_samples);
+}
+
+std::vector<float> KdeBackground::illumination_gains(const cv::Mat& bgr) const {
+  std::vector<float> gain(static_cast<std::size_t>(params_.n_samples), 1.0f);
+  if (!params_.illumination_compensation) return gain;
+  // A grid of ~4096 pixels at any resolution; pixels darker than S = 30 (of 765) in the frame
+  // are left out, their ratio being mostly sensor noise.
+  constexpr int kMinS = 30;
+  const int step = std::max(1, static_cast<int>(std::lround(std::sqrt(size_.area() / 4096.0))));
+  std::vector<std::size_t> where;
+  std::vector<float> frame_s;
+  for (int row = step / 2; row < size_.height; row += step) {
+    const unsigned char* in = bgr.ptr<unsigned char>(row);
+    for (int x = step / 2; x < size_.width; x += step) {
+      const int s = in[3 * x] + in[3 * x + 1] + in[3 * x + 2];
+      if (s < kMinS) continue;
+      where.push_back(static_cast<std::size_t>(row) * static_cast<std::size_t>(size_.width) + x);
+      frame_s.push_back(static_cast<float>(s));
+    }
+  }
+  if (where.size() < 16) return gain;  // a dark frame: nothing to measure a gain on
+  std::vector<float> ratio(where.size());
+  const std::size_t mid = ratio.size() / 2;
+  for (int slot = 0; slot < count_; ++slot) {  // the filled slots are 0 .. count_ - 1
+    const unsigned char* sb = samples_.data() + plane_offset(slot, 0);
+    const unsigned char* sg = samples_.data() + plane_offset(slot, 1);
+    const unsigned char* sr = samples_.data() + plane_offset(slot, 2);
+    for (std::size_t i = 0; i < where.size(); ++i) {
+      const std::size_t p = where[i];
+      ratio[i] = static_cast<float>(sb[p] + sg[p] + sr[p]) / frame_s[i];
+    }
+    std::nth_element(ratio.begin(), ratio.begin() + static_cast<std::ptrdiff_t>(mid), ratio.end());
+    if (ratio[mid] > 0.0f) gain[static_cast<std::size_t>(slot)] = ratio[mid];
+  }
+  return gain;
 }
 
 void KdeBackground::apply(const cv::Mat& bgr, cv::Mat& y) {
@@ -246,18 +275,9 @@ void KdeBackground::evaluate(const cv::Mat& bgr, cv::Mat& y) const {
   const float inv_n = 1.0f / static_cast<float>(count_);
   const int n = params_.n_samples;
   const int oldest = count_ < n ? 0 : next_slot_;
-  // Illumination compensation: the frame's S is scaled by mean S(sample) / mean S(frame) when
-  // compared with each sample (1 without compensation, which keeps eq. 10 as printed).
-  std::vector<float> gain(static_cast<std::size_t>(n), 1.0f);
-  if (params_.illumination_compensation) {
-    const cv::Scalar m = cv::mean(bgr);
-    const double mean_s = m[0] + m[1] + m[2];
-    for (int slot = 0; slot < n; ++slot) {
-      if (mean_s > 0.0 && sample_mean_s_[slot] > 0.0) {
-        gain[slot] = static_cast<float>(sample_mean_s_[slot] / mean_s);
-      }
-    }
-  }
+  // Illumination compensation: the frame's S is scaled by each sample's gain when compared with
+  // it (1 without compensation, which keeps eq. 10 as printed).
+  const std::vector<float> gain = illumination_gains(bgr);
   detail::for_rows(size_.height, params_.threads, [&](int begin, int end) {
     std::vector<float> buffer(static_cast<std::size_t>(cols) * 3);
     float* cur_r = buffer.data();
