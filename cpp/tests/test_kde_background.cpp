@@ -180,6 +180,23 @@ TEST(KdeBackground, IlluminationCompensationCancelsAGlobalGain) {
   EXPECT_LT(kernel_product(cv::Vec3b(78, 117, 156), cv::Vec3b(60, 90, 120), no_closing(2, 100)), 0.3);
 }
 
+// The gain is a median over the pixels, so a person in view does not bias it: the same 1.3 x
+// light with a dark person over a third of the frame still gives y = 1 on the background (the
+// ratio of the images' means, the former gain, would be 1.10 instead of 1 / 1.3 here).
+TEST(KdeBackground, IlluminationGainIgnoresThePeopleInView) {
+  const cv::Mat dim(10, 12, CV_8UC3, cv::Scalar(60, 90, 120));
+  cv::Mat bright(10, 12, CV_8UC3, cv::Scalar(78, 117, 156));
+  bright(cv::Rect(0, 0, 4, 10)).setTo(cv::Scalar(20, 20, 20));  // the person: 40 of 120 pixels
+  KdeBackgroundParams p = no_closing(2, 100);
+  p.illumination_compensation = true;
+  KdeBackground model(p);
+  cv::Mat y;
+  model.apply(dim, y);
+  model.apply(bright, y);
+  for (int x = 4; x < 12; ++x) EXPECT_NEAR(y.at<float>(5, x), 1.0, 1e-5) << x;
+  EXPECT_LT(y.at<float>(5, 1), 0.01);  // the person stays foreground
+}
+
 TEST(KdeBackground, FirstFrameIsItsOwnBackground) {
   KdeBackground model(no_closing(5, 3));
   cv::Mat frame(20, 30, CV_8UC3), y;
