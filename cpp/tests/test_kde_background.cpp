@@ -163,18 +163,25 @@ TEST(KdeBackground, UpdateStaticTakesStartUpGhostsIntoTheStackWhileItFills) {
 // Illumination compensation: a frame that is the sample under 1.3 x the light has the same r, g
 // and 1.3 x the intensity. Eq. (10) sees foreground (the intensity kernel alone, computed here
 // independently); compensated, the intensity is scaled back and y = 1.
+// y of frame `after` against a model that has seen `before` only (2 samples, no closing).
+static cv::Mat y_after(const cv::Mat& before, const cv::Mat& after, bool compensate) {
+  KdeBackgroundParams p = no_closing(2, 100);
+  p.illumination_compensation = compensate;
+  KdeBackground model(p);
+  cv::Mat y;
+  model.apply(before, y);
+  model.apply(after, y);
+  return y;
+}
+
 TEST(KdeBackground, IlluminationCompensationCancelsAGlobalGain) {
   const cv::Mat dim(10, 12, CV_8UC3, cv::Scalar(60, 90, 120));
   const cv::Mat bright(10, 12, CV_8UC3, cv::Scalar(78, 117, 156));  // x 1.3 exactly
   for (const bool compensate : {false, true}) {
-    KdeBackgroundParams p = no_closing(2, 100);
-    p.illumination_compensation = compensate;
-    KdeBackground model(p);
-    cv::Mat y;
-    model.apply(dim, y);
-    model.apply(bright, y);
+    const cv::Mat y = y_after(dim, bright, compensate);
     const double expected = compensate ? 1.0 : kernel_product(bright.at<cv::Vec3b>(0, 0),
-                                                              dim.at<cv::Vec3b>(0, 0), p);
+                                                              dim.at<cv::Vec3b>(0, 0),
+                                                              no_closing(2, 100));
     EXPECT_NEAR(y.at<float>(4, 5), expected, 1e-5) << compensate;
   }
   EXPECT_LT(kernel_product(cv::Vec3b(78, 117, 156), cv::Vec3b(60, 90, 120), no_closing(2, 100)), 0.3);
@@ -187,12 +194,7 @@ TEST(KdeBackground, IlluminationGainIgnoresThePeopleInView) {
   const cv::Mat dim(10, 12, CV_8UC3, cv::Scalar(60, 90, 120));
   cv::Mat bright(10, 12, CV_8UC3, cv::Scalar(78, 117, 156));
   bright(cv::Rect(0, 0, 4, 10)).setTo(cv::Scalar(20, 20, 20));  // the person: 40 of 120 pixels
-  KdeBackgroundParams p = no_closing(2, 100);
-  p.illumination_compensation = true;
-  KdeBackground model(p);
-  cv::Mat y;
-  model.apply(dim, y);
-  model.apply(bright, y);
+  const cv::Mat y = y_after(dim, bright, true);
   for (int x = 4; x < 12; ++x) EXPECT_NEAR(y.at<float>(5, x), 1.0, 1e-5) << x;
   EXPECT_LT(y.at<float>(5, 1), 0.01);  // the person stays foreground
 }
