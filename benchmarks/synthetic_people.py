@@ -47,9 +47,16 @@ against 0.609 / 0.653 (1-397: 0.581 / 0.717 against 0.568 / 0.683), so still off
 the tuning half it costs 0.03 IDF1. Left: why a near-1 gain changes PETS09's tracks that much (the
 camera's small exposure changes?), and then compensation on by default.
 The "far" scenes (640 x 480, people 36-60 px: a tenth of the image height) fail MB for another
-reason, not diagnosed: compensation does not help there (scene seed 11 0.333 / 0.658 -> 0.016 /
-0.496, seed 12 -0.384 / 0.376 -> -0.721 / 0.264; 8 tracks for 8 people, but 346-968 false
-positives and 400-704 misses: boxes off their people), while the SIR scores 0.956 / 0.976.
+reason: compensation does not help there (scene seed 11 0.333 / 0.658 -> 0.016 / 0.496, seed 12
+-0.384 / 0.376 -> -0.721 / 0.264), while the SIR scores 0.956 / 0.976. Seed 11, frames 20-180:
+MB holds a track on every person, centred on them, but its boxes are ~0.7 x theirs (median 11 x
+36 against 17 x 49; IoU < 0.5, so each counts as a miss and a false positive). The scenes have no
+perspective, so no person height line and MB's "image" reward, eq. (20) per image pixel: the box
+takes a strip of mean y_s only if y_s < (k + ybar) / (1 + k) with k = m_x delta_F / (m delta_B)
+(tbd_likelihood.hpp), and k shrinks with the people's share of the image (m_x / m), so in a large
+image boxes shrink to the people's dark core, as the crop fix found for the "row" reward. The fix
+to make: the per-person reward also without a line (the learnt person area for a(row)), with a
+delta_B that keeps the synthetic tests' exact boxes and PETS09's calibration.
 """
 
 from __future__ import annotations
