@@ -65,11 +65,6 @@ double centre_d2(const Eigen::Vector4f& box, const Eigen::Vector4f& to) {
   return double(d.squaredNorm());
 }
 
-bool boxes_intersect(const Eigen::Vector4f& a, const Eigen::Vector4f& b) {
-  return std::min(a[0] + a[2], b[0] + b[2]) > std::max(a[0], b[0]) &&
-         std::min(a[1] + a[3], b[1] + b[3]) > std::max(a[1], b[1]);
-}
-
 // A colour model, and a box of its own from when it was learnt (the cost's motion term).
 bool has_model(const TrackRecord& r) {
   return !r.appearance.empty() && r.alone_step >= 0 && r.alone_box[2] > 0.0f && r.alone_box[3] > 0.0f;
@@ -156,11 +151,10 @@ std::vector<TrackManager::LostTrack>::iterator TrackManager::find_lost(
   return by_iou != lost_.end() ? by_iou : by_distance;
 }
 
-double TrackManager::identity_cost(const Eigen::Vector4f& box, const ColourHistogram& seen,
+double TrackManager::identity_cost(const Eigen::Vector4f& box, double rho,
                                    const Eigen::Vector4f& from, const Eigen::Vector2f& velocity,
-                                   int since, const ColourHistogram& model) const {
+                                   int since) const {
   const double sigma = params_.appearance_sigma;
-  const double rho = colour_coefficient(seen, model);
   return (1.0 - rho) / (2.0 * sigma * sigma) +
          0.5 * centre_d2(box, moved_on(from, velocity, step_ - since));
 }
@@ -177,10 +171,10 @@ std::vector<TrackManager::LostTrack>::iterator TrackManager::find_lost_by_colour
     const TrackRecord& r = it->record;
     if (r.appearance.empty() || !(r.last_box[2] > 0.0f && r.last_box[3] > 0.0f)) continue;
     const Eigen::Vector4f predicted = moved_on(r.last_box, r.velocity, step_ - r.last_reported);
-    if (centre_d2(box, predicted) > gate_d2 || colour_coefficient(seen, r.appearance) < gate_rho) {
-      continue;
-    }
-    const double cost = identity_cost(box, seen, r.last_box, r.velocity, r.last_reported, r.appearance);
+    if (centre_d2(box, predicted) > gate_d2) continue;
+    const double rho = colour_coefficient(seen, r.appearance);
+    if (rho < gate_rho) continue;
+    const double cost = identity_cost(box, rho, r.last_box, r.velocity, r.last_reported);
     if (cost < best_cost) {
       best_cost = cost;
       best = it;
@@ -196,7 +190,7 @@ void TrackManager::resolve(const std::vector<View>& tracks) {
   std::vector<bool> alone(n, true);
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = i + 1; j < n; ++j) {
-      if (!boxes_intersect(tracks[i].box, tracks[j].box)) continue;
+      if (box_iou(tracks[i].box, tracks[j].box) <= 0.0) continue;  // they do not overlap
       alone[i] = alone[j] = false;
       TrackRecord& a = *tracks[i].record;
       TrackRecord& b = *tracks[j].record;
@@ -277,7 +271,8 @@ void TrackManager::assign_episode(const std::vector<View>& tracks,
     for (std::size_t j = 0; j < ids.size(); ++j) {
       const TrackRecord& r = ids[j].record;
       cost(Eigen::Index(i), Eigen::Index(j)) =
-          identity_cost(v.box, *v.seen, r.alone_box, r.alone_velocity, r.alone_step, r.appearance);
+          identity_cost(v.box, colour_coefficient(*v.seen, r.appearance), r.alone_box,
+                        r.alone_velocity, r.alone_step);
     }
   }
   const auto best = assign::linear_assignment(cost);

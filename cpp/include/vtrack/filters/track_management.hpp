@@ -137,11 +137,10 @@ class TrackManager {
   // The same by colour (appearance_distance, appearance_sigma), or lost_.end().
   std::vector<LostTrack>::iterator find_lost_by_colour(const Eigen::Vector4f& box,
                                                        const ColourHistogram& seen);
-  // The cost c of the file comment for a track at `box` seen as `seen`, of an id last at
-  // `from` moving at `velocity` since step `since` with colour model `model`.
-  double identity_cost(const Eigen::Vector4f& box, const ColourHistogram& seen,
-                       const Eigen::Vector4f& from, const Eigen::Vector2f& velocity, int since,
-                       const ColourHistogram& model) const;
+  // The cost c of the file comment for a track at `box` whose colours have coefficient rho with
+  // an id's model, the id last at `from` moving at `velocity` since step `since`.
+  double identity_cost(const Eigen::Vector4f& box, double rho, const Eigen::Vector4f& from,
+                       const Eigen::Vector2f& velocity, int since) const;
   // resolve() for one episode: the alone tracks `members` (indices into tracks) and the lost
   // ids they overlapped.
   void assign_episode(const std::vector<View>& tracks, const std::vector<std::size_t>& members);
