@@ -83,7 +83,8 @@ struct KdeBackgroundParams {
   // the background model cannot know: the multi-Bernoulli tracker applies it (its closing_ratio,
   // 0.06 of the learnt person height), and in the mb pipeline (apps/pipeline.hpp) this closing
   // follows the tracker's after every frame (set_closing), so that the selective update's mask
-  // is closed like the tracker's y; this value is then the first frame's. Default 5 until issue 12, which fitted PETS09-S2L1 at
+  // is closed like the tracker's y; this value is then the first frame's and the floor (sensor
+  // specks do not shrink with the people). Default 5 until issue 12, which fitted PETS09-S2L1 at
   // 768 x 576 only: resized 0.5x, 5 x 5 here joins neighbouring people (MB MOTA / IDF1 on all
   // frames, seeds 0-2: 0.456 / 0.397 with 5, 0.478 / 0.481 with 3). (At 768 x 576, one closing of
   // 5 here against 3 here and 5 in the tracker: frames 1-397, calibrated MOTA / IDF1 over seeds
