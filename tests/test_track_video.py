@@ -56,6 +56,23 @@ def test_illumination_compensation_handles_a_faster_light_change(tmp_path):
     assert compensated["FP"] < plain["FP"], (plain, compensated)
 
 
+@pytest.mark.parametrize("seed", [5, 6])
+def test_defaults_hold_for_small_people_under_a_light_swing(tmp_path, seed):
+    """People 18-30 px tall in a 160 x 120 video with the synthetic scenes' 8 % light swing, all
+    defaults: the mb pipeline compensates the swing (measured MOTA / IDF1 0.944 / 0.972 and 0.961
+    / 0.980; scene 5 without the compensation -0.123 / 0.532, 297 false positives)."""
+    cv2 = pytest.importorskip("cv2")
+    scene = make_scene(160, 120, n_frames=150, n_people=3, seed=seed, size=((7, 12), (18, 30)),
+                       speed=(0.5, 1.25))
+    path = tmp_path / "small.avi"
+    writer = cv2.VideoWriter(str(path), cv2.VideoWriter_fourcc(*"MJPG"), 10.0, (160, 120))
+    for k in range(len(scene)):
+        writer.write(scene.frame(k))
+    writer.release()
+    metrics = evaluate(scene.gt_rows(), vtrack.track_video(path, seed=0, **FOREGROUND_BOX))
+    assert metrics["MOTA"] > 0.85 and metrics["IDF1"] > 0.9, metrics
+
+
 def test_same_seed_same_tracks_and_parameters_are_checked(crossing_scenes):
     _, path = crossing_scenes[3]
     a = vtrack.track_video(path, seed=5, **FOREGROUND_BOX)
