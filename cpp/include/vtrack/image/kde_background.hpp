@@ -127,12 +127,8 @@ struct KdeBackgroundParams {
   // is compared with each sample's after scaling it by the median, over a grid of ~4096 pixels,
   // of S(sample) / S(frame) (S = R + G + B): a global gain change between the sample and the
   // frame cancels, and the people in view, a minority of the pixels, move a median little.
-  // false = eq. (10) as printed. Off by default: on vtrack.synthetic's 8 % light swing it lifts
-  // MB's MOTA from -0.09 to 0.96 (benchmarks/synthetic_people.py, scene seed 12), but it costs
-  // PETS09-S2L1, which has no global light change (MB, seeds 0-2, MOTA / IDF1 on all frames and
-  // on the tuning half 1-397: off 0.614 / 0.672, 0.581 / 0.717; the median gain 0.609 / 0.653,
-  // 0.568 / 0.683; the former gain, the ratio of the whole images' means, which moved with the
-  // people in view, 0.604 / 0.630, 0.567 / 0.667).
+  // false = eq. (10) as printed, the class's default; the mb pipeline turns it on
+  // (apps/pipeline.hpp, mb_background_defaults, which has the measurements).
   bool illumination_compensation = false;
 
   // The names of the fields (config files, --set, Python keywords).
