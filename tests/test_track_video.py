@@ -37,17 +37,12 @@ def test_tracks_synthetic_people_end_to_end(crossing_scenes, seed):
     assert np.sum(rows[:, 0] == last + 1) == scene.count(last)
 
 
-def test_illumination_compensation_handles_a_faster_light_change(tmp_path):
+def test_illumination_compensation_handles_a_faster_light_change(write_video):
     """An 8 % light swing over the 150 frames (the KDE's stack spans 100): with the paper's eq. (10)
     the intensity kernel turns the whole image grey and false tracks appear (measured MOTA 0.79,
     27 FP on this scene); the KDE's global gain compensation cancels the swing (0.94, 1 FP)."""
-    cv2 = pytest.importorskip("cv2")
     scene = make_scene(320, 240, n_frames=150, n_people=3, seed=3, illumination_amplitude=0.08)
-    path = tmp_path / "scene.avi"
-    writer = cv2.VideoWriter(str(path), cv2.VideoWriter_fourcc(*"MJPG"), 10.0, (320, 240))
-    for k in range(len(scene)):
-        writer.write(scene.frame(k))
-    writer.release()
+    path = write_video([scene.frame(k) for k in range(len(scene))], fps=10.0)
     plain = evaluate(scene.gt_rows(), vtrack.track_video(
         path, seed=0, illumination_compensation=False, **FOREGROUND_BOX))
     compensated = evaluate(scene.gt_rows(), vtrack.track_video(
@@ -57,18 +52,13 @@ def test_illumination_compensation_handles_a_faster_light_change(tmp_path):
 
 
 @pytest.mark.parametrize("seed", [5, 6])
-def test_defaults_hold_for_small_people_under_a_light_swing(tmp_path, seed):
+def test_defaults_hold_for_small_people_under_a_light_swing(write_video, seed):
     """People 18-30 px tall in a 160 x 120 video with the synthetic scenes' 8 % light swing, all
     defaults: the mb pipeline compensates the swing (measured MOTA / IDF1 0.944 / 0.972 and 0.961
     / 0.980; scene 5 without the compensation -0.123 / 0.532, 297 false positives)."""
-    cv2 = pytest.importorskip("cv2")
     scene = make_scene(160, 120, n_frames=150, n_people=3, seed=seed, size=((7, 12), (18, 30)),
                        speed=(0.5, 1.25))
-    path = tmp_path / "small.avi"
-    writer = cv2.VideoWriter(str(path), cv2.VideoWriter_fourcc(*"MJPG"), 10.0, (160, 120))
-    for k in range(len(scene)):
-        writer.write(scene.frame(k))
-    writer.release()
+    path = write_video([scene.frame(k) for k in range(len(scene))], fps=10.0)
     metrics = evaluate(scene.gt_rows(), vtrack.track_video(path, seed=0, **FOREGROUND_BOX))
     assert metrics["MOTA"] > 0.85 and metrics["IDF1"] > 0.9, metrics
 
