@@ -378,13 +378,10 @@ class VtrackMethod:
         return rows, frames / max(elapsed, 1e-9)
 
 
-MB_FOREGROUND_BOX = dict(box_scale_w=1.0, box_scale_h=1.0, box_offset_x=0.0, box_offset_y=0.0)
-
 VTRACK_METHODS: Dict[str, VtrackMethod] = {
-    "vtrack MB": VtrackMethod("mb", {"threads": 1}, MB_FOREGROUND_BOX),
-    # Issue 12 part 1: the re-clustering SIR (KDE background -> ReclusteringSir); the same
-    # keywords report its ellipses' bounding boxes uncalibrated.
-    "vtrack SIR": VtrackMethod("sir", {"threads": 1}, MB_FOREGROUND_BOX),
+    "vtrack MB": VtrackMethod("mb", {"threads": 1}, vtrack.pipelines.SILHOUETTE_BOX["mb"]),
+    # Issue 12 part 1: the re-clustering SIR (KDE background -> ReclusteringSir).
+    "vtrack SIR": VtrackMethod("sir", {"threads": 1}, vtrack.pipelines.SILHOUETTE_BOX["sir"]),
 }
 
 # Tuned on PETS09-S2L1 frames 1-397 at 768 x 576 (benchmarks/pets09.py --tune; the log is in

@@ -43,6 +43,7 @@ def test_defaults_and_params():
     ({"sigma_xy": 0.0}, ValueError, "sigma_xy"),
     ({"sigma_wh": -1}, ValueError, "sigma_wh"),
     ({"delta_b": 0}, ValueError, "delta_b"),
+    ({"delta_b_no_line": float("nan")}, ValueError, "delta_b_no_line"),
     ({"delta_b_reference": "screen"}, ValueError, "screen"),
     ({"delta_b_reference": "row", "size_by_row": False}, ValueError, "size_by_row"),
     ({"sigma_xy": "2"}, TypeError, "sigma_xy"),
@@ -206,10 +207,10 @@ def test_all_background_and_all_foreground_no_nan():
         assert all(np.all(np.isfinite(c.particles)) for c in t.components)
 
 
-# The synthetic ground-truth boxes are the blobs' exact extents, i.e. the foreground box the filter
-# estimates, not a margin-annotated box like MOT15's: report it unscaled (the default box_scale_*
-# and box_offset_* map to PETS09's annotation convention).
-FOREGROUND_BOX = dict(box_scale_w=1.0, box_scale_h=1.0, box_offset_x=0.0, box_offset_y=0.0)
+# The synthetic ground-truth boxes are the blobs' exact extents, not a margin-annotated box like
+# MOT15's: report the silhouette's box (the default box_scale_* and box_offset_* map to PETS09's
+# annotation convention).
+FOREGROUND_BOX = vtrack.pipelines.SILHOUETTE_BOX["mb"]
 
 
 def run(scene, seed=0, **params):

@@ -9,7 +9,7 @@ import vtrack
 from vtrack.evaluate import evaluate
 
 # The scenes' ground truth is the blobs' exact extent: report the ellipses' boxes unscaled.
-FOREGROUND_BOX = dict(box_scale_w=1.0, box_scale_h=1.0, box_offset_x=0.0, box_offset_y=0.0)
+FOREGROUND_BOX = vtrack.pipelines.SILHOUETTE_BOX["sir"]
 
 
 def numpy_log_likelihood(ellipse, points, rho, sigma, shape_power=1.0):

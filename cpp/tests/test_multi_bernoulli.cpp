@@ -385,21 +385,24 @@ namespace {
 // (size_by_row); the reported box is the filter's own. The scene fills 640 x 480 px at the
 // image's top left; `width` x `height` may be larger (the same people in a wider view). Returns,
 // per person, far to near, the median over frames 30-59 of the height of the filter box nearest
-// to them over their height (0 if never tracked).
+// to them over their height (0 if never tracked). Without perspective the five are 70 px tall
+// on the same rows (no person height line: a camera far from the people, or looking down).
 std::vector<double> box_height_fractions(MultiBernoulliParams p, int width = 640,
-                                         int height = 480) {
+                                         int height = 480, bool perspective = true) {
   p.size_by_row = true;
   p.box.box_scale_w = p.box.box_scale_h = 1.0;
   p.box.box_offset_x = p.box.box_offset_y = 0.0;
   constexpr int kPeople = 5;
-  const double heights[kPeople] = {50.0, 70.0, 90.0, 115.0, 140.0};
+  const double foot_heights[kPeople] = {50.0, 70.0, 90.0, 115.0, 140.0};  // h = 0.32 foot row
+  double heights[kPeople];
+  for (int i = 0; i < kPeople; ++i) heights[i] = perspective ? foot_heights[i] : 70.0;
   const double starts[kPeople] = {60.0, 170.0, 280.0, 390.0, 500.0};
   MultiBernoulliFilter f(width, height, p);
   std::vector<std::vector<double>> fractions(kPeople);
   for (int k = 0; k < 60; ++k) {
     cv::Mat y(height, width, CV_32F, cv::Scalar(1.0f));
     for (int i = 0; i < kPeople; ++i) {
-      people_scene::render_person(y, starts[i] + k, heights[i] / 0.32 - 0.5 * heights[i],
+      people_scene::render_person(y, starts[i] + k, foot_heights[i] / 0.32 - 0.5 * heights[i],
                                   0.35 * heights[i], heights[i]);
     }
     const Tracks& tracks = f.step(y);
@@ -452,6 +455,22 @@ TEST(MultiBernoulli, RowReferenceBoxesPeopleAlikeWhateverTheImageSize) {
   p.seed = 3;
   const std::vector<double> small = box_height_fractions(p);
   const std::vector<double> large = box_height_fractions(p, 1280, 960);
+  for (std::size_t i = 0; i < small.size(); ++i) {
+    ASSERT_GT(small[i], 0.0) << "person " << i;
+    ASSERT_GT(large[i], 0.0) << "person " << i;
+    EXPECT_NEAR(large[i] / small[i], 1.0, 0.1) << "person " << i;
+  }
+}
+
+// Without perspective (no person height line) too: the reward is per the prior's person area
+// (delta_b_no_line), so the same people in a view four times as large are boxed alike. With eq.
+// (20) per image pixel, which "row" fell back to until 2026-11-28, k = m_x delta_F / (m delta_B)
+// fell with the people's share of the image and the boxes shrank to the silhouettes' cores.
+TEST(MultiBernoulli, RowReferenceWithoutPerspectiveBoxesPeopleAlikeWhateverTheImageSize) {
+  MultiBernoulliParams p;
+  p.seed = 3;
+  const std::vector<double> small = box_height_fractions(p, 640, 480, false);
+  const std::vector<double> large = box_height_fractions(p, 1280, 960, false);
   for (std::size_t i = 0; i < small.size(); ++i) {
     ASSERT_GT(small[i], 0.0) << "person " << i;
     ASSERT_GT(large[i], 0.0) << "person " << i;

@@ -291,13 +291,19 @@ TEST(TbdLikelihood, RowReferenceFitsPeopleOfEverySizeAlike) {
   printed_lik.set_image(y);
   TbdLikelihoodParams row = image;
   row.delta_b_reference = TbdLikelihoodParams::DeltaBReference::row;
-  row.delta_b_row = 10.0 * image.delta_b;  // without row areas delta_b holds, not this
+  row.delta_b_row = 10.0;  // without row areas delta_b_no_line holds, not this
+  row.delta_b_no_line = 0.9;
   TbdLikelihood by_row(row);
   by_row.set_person_size(0.4 * 160, 160);
-  by_row.set_image(y);  // no row areas yet: eq. (20) as printed with delta_b
+  by_row.set_image(y);  // no row areas yet: every row's area is the prior's,
+  // i.e. eq. (20) with m delta_B = 0.4 x 160 x 160 px x 0.9.
+  TbdLikelihoodParams constant_area = printed();
+  constant_area.delta_b = 0.9 * 0.4 * 160 * 160 / double(y.total());
+  TbdLikelihood constant_lik(constant_area);
+  constant_lik.set_image(y);
   for (const auto& b : std::vector<std::array<float, 4>>{{40, 60, 40, 90}, {150, 100, 70, 200}}) {
     EXPECT_NEAR(by_row.log_likelihood(b[0], b[1], b[2], b[3]),
-                printed_lik.log_likelihood(b[0], b[1], b[2], b[3]), 1e-4);
+                constant_lik.log_likelihood(b[0], b[1], b[2], b[3]), 1e-4);
   }
   // With row areas a person-sized box earns (1 - ybar) / delta_b_row: as the printed one here
   // at the middle person's size.

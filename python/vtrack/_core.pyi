@@ -374,6 +374,7 @@ class MultiBernoulliTracker:
         delta_f: float = 0.1,
         delta_b: float = 0.002,
         delta_b_row: float = 0.52,
+        delta_b_no_line: float = 0.2,
         delta_b_reference: Literal["person", "image", "row"] = 'row',
         closing_size: int = 0,
         closing_ratio: float = 0.06,

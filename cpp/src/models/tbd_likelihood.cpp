@@ -17,6 +17,7 @@ const core::ParameterTable<TbdLikelihoodParams>& TbdLikelihoodParams::table() {
                                 .add("delta_f", &P::delta_f)
                                 .add("delta_b", &P::delta_b)
                                 .add("delta_b_row", &P::delta_b_row)
+                                .add("delta_b_no_line", &P::delta_b_no_line)
                                 .add_choice("delta_b_reference", &P::delta_b_reference,
                                             {{"person", P::DeltaBReference::person},
                                              {"image", P::DeltaBReference::image},
@@ -35,6 +36,8 @@ void validate(const TbdLikelihoodParams& p) {
   }
   require(p.delta_b_row > 0.0 && std::isfinite(p.delta_b_row), "delta_b_row", p.delta_b_row,
           "a positive finite number");
+  require(p.delta_b_no_line > 0.0 && std::isfinite(p.delta_b_no_line), "delta_b_no_line",
+          p.delta_b_no_line, "a positive finite number");
   if (p.closing_size < 0 || (p.closing_size > 1 && p.closing_size % 2 == 0)) {
     throw InvalidArgument("closing_size must be 0, 1 or an odd number, got " +
                           std::to_string(p.closing_size));
@@ -113,12 +116,15 @@ void TbdLikelihood::set_image(const cv::Mat& y) {
   }
   image::close_square(y, closed_, closing_pixels(), 1, &closing_workspace_);
   integral_.compute(closed_);
-  // Eq. (20)'s m delta_B, or a delta_B with a the person prior's area (see delta_b).
-  // "row" without row areas is "image" with delta_b (see delta_b_row); with them the areas
-  // a(row_i) take m's place, pixel by pixel (set_row_reward).
-  row_weighted_ = params_.delta_b_reference == Reference::row && !row_areas_.empty();
-  const double area = person ? person_width_ * person_height_ : static_cast<double>(y.total());
-  inv_m_delta_b_ = row_weighted_ ? 1.0 / params_.delta_b_row : 1.0 / (area * params_.delta_b);
+  // Eq. (20)'s m delta_B, or a delta_B with a the person prior's area (see delta_b). "row" with
+  // row areas puts a(row_i) in m's place, pixel by pixel (set_row_reward); without them every
+  // row's area is the prior's (see delta_b_no_line).
+  const bool row = params_.delta_b_reference == Reference::row;
+  row_weighted_ = row && !row_areas_.empty();
+  const double area =
+      person || row ? person_width_ * person_height_ : static_cast<double>(y.total());
+  const double delta_b = row ? params_.delta_b_no_line : params_.delta_b;
+  inv_m_delta_b_ = row_weighted_ ? 1.0 / params_.delta_b_row : 1.0 / (area * delta_b);
   if (row_weighted_) set_row_reward();
 }
 

@@ -77,9 +77,9 @@ struct MultiBernoulliParams {
   // near people are boxed alike: with delta_b_row 3e-3 the pair (the default) beats the former
   // defaults ("image", size_by_row off) on MOTA, IDF1 and HOTA on all frames of PETS09-S2L1 at
   // 768 x 576 and resized 0.4x-1.5x. Where the scene shows no perspective (the line needs five
-  // row bands of people that agree on it, models/person_size.hpp) both are exactly the former
-  // defaults: the synthetic scenes of tests/test_track_video.py (three people in lanes) are
-  // tracked as before. benchmarks/mb_perspective.py has the figures.
+  // row bands of people that agree on it, models/person_size.hpp) the sizes are the one h's and
+  // the reward is per the prior's person area (the likelihood's delta_b_no_line).
+  // benchmarks/mb_perspective.py has the figures.
   bool size_by_row = true;
   // Standard deviations of the random walk x(k+1) = x(k) + e(k) (Section 4) per frame, as
   // fractions of h: positions (x, y) and sizes (w, h). PETS09-S2L1 runs at 7 frames/s, so its

@@ -73,8 +73,8 @@ struct TbdLikelihoodParams {
   //
   // With delta_b_reference "row", eq. (20) with the image's pixel count m replaced pixel by pixel
   // by a(row_i), the area of the person the prior expects centred on that row (the tracker's
-  // person height line by foot row, set_row_areas; without one it is exactly "image" with
-  // delta_b), and delta_b_row for delta_B: each pixel earns (1 - y_i) / (a(row_i) delta_b_row),
+  // person height line by foot row, set_row_areas; without one the prior's mean area on every
+  // row, with delta_b_no_line), and delta_b_row for delta_B: each pixel earns (1 - y_i) / (a(row_i) delta_b_row),
   // so a person-sized box of mean ybar earns about (1 - ybar) / delta_b_row nats on every row,
   // at every resolution and whatever the people's share of the image. Why: with "image" or
   // "person" the reward grows with the box's pixel count m_x while the penalty -ybar / delta_F
@@ -97,13 +97,23 @@ struct TbdLikelihoodParams {
   double delta_b = 2e-3;
   // The delta_B of the "row" reference while row areas are set (a person height line is in
   // force), per person area: a person-sized box of mean ybar earns about (1 - ybar) /
-  // delta_b_row. Without row areas "row" is "image" with delta_b, exactly: a scene that shows no
-  // perspective (one person size, or too few people to fit a line) is tracked as with the
-  // printed eq. (20) and its tuned delta_b. 0.52 is the 3e-3 per image pixel chosen on PETS09-S2L1
-  // frames 1-397 among 2e-3 and 3e-3 (benchmarks/mb_perspective.py; the larger delta_B cut the
-  // far people's false positives of the first half) for its 30 x 85 px mean person at 768 x 576
-  // (3e-3 x 442368 / 2550).
+  // delta_b_row. 0.52 is the 3e-3 per image pixel chosen on PETS09-S2L1 frames 1-397 among 2e-3
+  // and 3e-3 (benchmarks/mb_perspective.py; the larger delta_B cut the far people's false
+  // positives of the first half) for its 30 x 85 px mean person at 768 x 576 (3e-3 x 442368 /
+  // 2550).
   double delta_b_row = 0.52;
+  // The delta_B of the "row" reference without row areas (a scene that shows no perspective, or
+  // too few people yet to fit a line): every row's area is the prior's mean person area a, so a
+  // box of m_x pixels earns m_x (1 - ybar) / (a delta_b_no_line) whatever the image size. Until
+  // 2026-11-28 it was eq. (20) per image pixel with delta_b, whose k = m_x delta_F / (m delta_B)
+  // fell with the people's share of the image: with people a tenth of a 640 x 480 image, boxes
+  // shrank to 0.7 x the people (benchmarks/synthetic_people.py, "far": MB MOTA -0.35). Lower
+  // than delta_b_row, because one area now stands for people of every size: one smaller than the
+  // mean earns less (at 0.52 tests/test_multi_bernoulli.py's 768 x 576 scene of 70-140 px people
+  // lost its smaller ones: MOTA 0.565). 0.2 is the best of 0.17-0.35 on a tuning split of
+  // synthetic scenes without perspective (synthetic_people.py's docstring: the smaller, the more
+  // small people found; the larger, the fewer pairs boxed as one in dense scenes).
+  double delta_b_no_line = 0.2;
   enum class DeltaBReference { image, person, row };
   DeltaBReference delta_b_reference = DeltaBReference::image;
   // Side of the square structuring element of the morphological closing of y (Section 3.2), which
