@@ -135,6 +135,9 @@ def test_frames_used_never_fully_in_view_and_the_parameters(camera):
         vtrack.vehicles.VehicleDimensionEstimator(camera, outlier_gate=-1.0)
     with pytest.raises(ValueError, match="foot_gate"):  # checked before the video is opened
         vtrack.vehicles.measure_vehicles("no-such-video.mkv", camera, foot_gate=float("nan"))
+    for bad in (-0.5, float("inf")):
+        with pytest.raises(ValueError, match="hidden_horizon"):
+            vtrack.vehicles.measure_vehicles("no-such-video.mkv", camera, hidden_horizon=bad)
     light = [m for m in vtrack.vehicles.table1_vehicle_models() if not m["heavy"]]
     only_light = vtrack.vehicles.VehicleDimensionEstimator(camera, models=light, light_heavy_rule="class")
     only_light.update(1, np.array([400.0, 300.0, 60.0, 50.0]))
