@@ -371,6 +371,30 @@ blob all along; 2 cars "not fully in view", a van and a car heavy, 2 missed), si
 (missed), mast_low 1500's truck 5 (its union with car 4 lasts longer than one passage of the truck's
 own track: horizon 2 would fix it and break two others) and gantry 1500's truck 28 (its passage
 split in two tracks, the first's outlines W 0.42 m, with more frames used).
+Held out, once, with hidden_horizon 1.0 (after the choice above; `--video-only --video-vehicles 40
+--video-seed S --video-setups mast_low gantry side wide_distorted mast_high --scene-dir DIR`). Seeds
+1100/1300 were the last session's held-out seeds: their figures had been seen, not their scenes
+traced. Seed 1900 is new (rendered for this run, the default class mix, never looked at before), run
+also with `--video-set hidden_horizon=0.0` (before). Found / light / heavy / MAE W H L m, per set-up
+mast_low, gantry, side, wide_distorted, mast_high:
+  1100  38/40 32/32 5/6 0.25 0.12 0.87 | 40/40 34/34 6/6 0.12 0.12 0.88 | 37/40 30/31 6/6 0.23 0.17 0.60
+        | 39/40 33/34 4/5 0.25 0.16 0.87 | 38/40 32/32 5/6 0.24 0.16 0.71
+  1300  40/40 33/33 6/7 0.19 0.08 0.84 | 40/40 33/33 5/7 0.15 0.19 0.95 | 40/40 33/33 7/7 0.18 0.07 0.28
+        | 40/40 33/33 6/7 0.15 0.15 0.51 | 40/40 33/33 7/7 0.12 0.10 0.36
+  1900  38/40 30/30 8/8 0.21 0.07 1.02 | 40/40 32/32 8/8 0.16 0.15 1.08 | 39/40 31/31 7/8 0.25 0.12 0.62
+        | 40/40 32/32 8/8 0.22 0.13 0.71 | 39/40 31/31 8/8 0.18 0.13 0.60
+  1900, before (hidden_horizon 0): 38/40 30/30 7/8 0.27 0.08 1.09 | 40/40 32/32 8/8 0.18 0.20 1.21
+        | 39/40 31/31 7/8 0.24 0.12 0.59 | 40/40 32/32 8/8 0.23 0.14 0.71 | 39/40 31/31 8/8 0.17 0.11 0.53
+Totals: 1100+1300 found 392/400 (98.0 %), light 326/328 (99.4 %), heavy 57/64 (89.1 %; the last
+session's final defaults: 392/400, 326/328, 56/64: gantry 1100 and mast_high 1300 gained a heavy,
+gantry 1300 lost one, a truck); 1900 found 196/200 (98.0 %), light 156/156, heavy 39/40 (97.5 %;
+before 38/40). Wrong: 1100 an articulated lorry (mast_low) and trucks (wide_distorted, mast_high)
+light, a car and a van heavy (side, wide_distorted), a car not fully in view (side); 1300 trucks
+light (mast_low, gantry, wide_distorted) and a bus light (gantry); 1900 a truck light and a car not
+fully in view (side). Still below the bar for heavy vehicles (89.1 % and 97.5 % against 99 %);
+found and light at the bar over the seeds, not on every set-up. Pipeline time per frame: the same
+with and without the check (28.5-30.6 ms on 1900, the machine shared); the views kept to the end
+of the video cost memory (not measured: every blob's outline, 8 bytes per point, until the end).
 """
 
 import argparse
