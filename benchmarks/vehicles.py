@@ -4,7 +4,7 @@ on generated road scenes (vtrack.synthetic_road), per method.
 Usage: python benchmarks/vehicles.py [--vehicles N] [--seed S] [--step K] [--noise PX ...]
                                      [--video-vehicles M] [--video-setups NAME ...] [--video-seed S2]
                                      [--video-scale F] [--video-set NAME=VALUE ...]
-                                     [--scene-dir DIR] [--video-only]
+                                     [--video-class-mix CLASS=SHARE ...] [--scene-dir DIR] [--video-only]
 
 From observations: for every camera set-up of vtrack.synthetic_road, a scene of N vehicles (seed
 S, the generator's class mix: cars, vans, motorbikes, cars with trailers, trucks, articulated
@@ -326,6 +326,81 @@ median of 3, machine shared; /tmp script): gantry 300, 3404 vehicle-frames: upda
 vehicle-frame with outlier_gate 0 and 3, estimates() (where the refit runs, once per vehicle)
 0.1 us per vehicle-frame more; mast_high 100, 1739: 21.8 / 25.0 us (gate 0 / 3; the refit is not
 in update(), so that difference is the machine's), estimates() 0.1 us. Under the 0.1 ms bar.
+
+Issue 13, outlines holding a vehicle found later (session vehicles9; tuning seeds 100, 300, 700 and
+a new heavy-rich tuning seed 1500: `--video-seed 1500 --video-class-mix car=0.40 van=0.08
+motorbike=0.04 car_trailer=0.04 truck=0.20 articulated=0.12 bus=0.12`, 55 heavies in 200 vehicles;
+diagnosed on a Python copy of the pipeline over cached KDE masks, equal to measure_vehicles on every
+tuning scene run with both). Diagnosis: the three heavies called light on seeds 100/300 (gantry 100
+articulated lorry 39, gantry 300 truck 20, wide_distorted 300 truck 20) were one case (the change
+below also fixed three of seed 1500's five, not traced one by one): the heavy emerges from the
+distance behind a car of its lane, above it in the image, the two one blob for 50-70 frames, tracked
+as one vehicle by the car's foot. The heavy has no track yet, so nothing marks the blob as two
+vehicles' (no merge, no join): the union's outline went to the car's estimator and its box, mostly
+the heavy's, to the car's rows. The IoU match then scored the car's track as the heavy (car
+"missed", heavy "called light" with the car's dimensions) while the heavy's own track, started where
+the blob parted, was right but had fewer frames used (gantry 100: 17 used, 67 union rows, against
+14). Change (apps/vehicles.hpp, hidden_horizon 1.0): the views are kept to the end of the video; a
+view is hidden when another confirmed track, with no blob of its own in that frame and within one
+length of its own passage of it, has its road-predicted box (from its first or last view) inside the
+image and half or more inside the view's blob box; hidden views go to the fallback estimator and
+have no track row (as a merge's). `--video-set hidden_horizon=0.0` is the pipeline before. Found /
+light / heavy / MAE W H L m / reported (prototype figures; measure_vehicles with the change:
+identical per set-up on all four seeds):
+  tuning scenes          before (0)                              after (1.0, kept)
+  100+300+700 (600)      596 483/486 107/110 0.19 0.11 0.58 715   597 486/488 109/109 0.18 0.09 0.57 715
+  1500 heavy-rich (200)  199 144/144  50/55  0.23 0.14 0.76 251   199 144/144  53/55  0.21 0.13 0.67 251
+  horizon 2.0 (all 800)  796 630/632 161/164 0.18 0.10 0.59 966   (1.0: 796 630/632 162/164)
+  horizon 4.0 (all 800)  796 630/632 160/164 0.18 0.10 0.59 966
+  contiguous, 1.0 (800)  796 630/632 162/164 0.19 0.10 0.59 966
+  contiguous, no cap     796 630/632 161/164 0.18 0.10 0.59 966
+Fixed: the gantry 100/300 and wide_distorted 300 heavies and their cars (found now), the gantry 700
+van (called heavy before, not traced), seed 1500's mast_low articulated lorry and both
+wide_distorted trucks. New: side 100's truck 22 (seed 100), in a tangle of side-by-side vehicles
+with no clean track, was matched through a 7-frame fragment; those rows are now hidden and no track
+matches it (missed; found 39/40 there). Longer horizons reach further back and mark views that were
+the track's own (horizon 2: wide_distorted 300's bus light, a mast_low 1500 truck). (Contiguous:
+before and after the other track's passage only the unbroken run of views next to it that it lies
+in.) Tried and dropped: hidden only when the other vehicle's box also sticks out of the track's own
+box extrapolated from its first view after the split, by half its area (to spare a clean outline
+with a vehicle wholly behind it): 598/600 486/488 108/110 (a track that ends at the split has no
+view after it: wide_distorted 300's truck light again; mast_high 700's truck light); stitching a
+track's fragments (one continues another when each one's road prediction overlaps the other's
+nearest blobs; the vehicles7 prototype) on top: 794/800 628/630 160/164 over the four seeds (a
+mast_low 300 bus and a second gantry 1500 truck light, two more missed); predicting the other track
+from its first/last view not joined with another vehicle (mast_low 1500's truck track starts on such
+a view): 796/800 630/632 161/164 (a mast_low 100 truck light, the mast_low 1500 truck still light);
+hidden views kept in the rows (estimator only): 596/600 484/486 108/110 (the union's rows still make
+the car's track the heavy's match). Left on the tuning scenes: the side-by-side pairs of side
+300/700 (one blob all along; 2 cars "not fully in view", a van and a car heavy, 2 missed), side
+100's truck (missed), mast_low 1500's truck 5 (car 4's track, 68 of whose rows match the truck's
+box, still wins the truck's match; longer horizons do not fix it) and gantry 1500's truck 28 (its
+passage split in two tracks, the first's outlines W 0.42 m, with more frames used; horizon 2 fixes
+it and breaks two others).
+Held out, once, with hidden_horizon 1.0 (after the choice above; `--video-only --video-vehicles 40
+--video-seed S --video-setups mast_low gantry side wide_distorted mast_high --scene-dir DIR`). Seeds
+1100/1300 were the last session's held-out seeds: their figures had been seen, not their scenes
+traced. Seed 1900 is new (rendered for this run, the default class mix, never looked at before), run
+also with `--video-set hidden_horizon=0.0` (before). Found / light / heavy / MAE W H L m, per set-up
+mast_low, gantry, side, wide_distorted, mast_high:
+  1100  38/40 32/32 5/6 0.25 0.12 0.87 | 40/40 34/34 6/6 0.12 0.12 0.88 | 37/40 30/31 6/6 0.23 0.17 0.60
+        | 39/40 33/34 4/5 0.25 0.16 0.87 | 38/40 32/32 5/6 0.24 0.16 0.71
+  1300  40/40 33/33 6/7 0.19 0.08 0.84 | 40/40 33/33 5/7 0.15 0.19 0.95 | 40/40 33/33 7/7 0.18 0.07 0.28
+        | 40/40 33/33 6/7 0.15 0.15 0.51 | 40/40 33/33 7/7 0.12 0.10 0.36
+  1900  38/40 30/30 8/8 0.21 0.07 1.02 | 40/40 32/32 8/8 0.16 0.15 1.08 | 39/40 31/31 7/8 0.25 0.12 0.62
+        | 40/40 32/32 8/8 0.22 0.13 0.71 | 39/40 31/31 8/8 0.18 0.13 0.60
+  1900, before (hidden_horizon 0): 38/40 30/30 7/8 0.27 0.08 1.09 | 40/40 32/32 8/8 0.18 0.20 1.21
+        | 39/40 31/31 7/8 0.24 0.12 0.59 | 40/40 32/32 8/8 0.23 0.14 0.71 | 39/40 31/31 8/8 0.17 0.11 0.53
+Totals: 1100+1300 found 392/400 (98.0 %), light 326/328 (99.4 %), heavy 57/64 (89.1 %; the last
+session's final defaults: 392/400, 326/328, 56/64: gantry 1100 and mast_high 1300 gained a heavy,
+gantry 1300 lost one, a truck); 1900 found 196/200 (98.0 %), light 156/156, heavy 39/40 (97.5 %;
+before 38/40). Wrong: 1100 an articulated lorry (mast_low) and trucks (wide_distorted, mast_high)
+light, a car and a van heavy (side, wide_distorted), a car not fully in view (side); 1300 trucks
+light (mast_low, gantry, wide_distorted) and a bus light (gantry); 1900 a truck light and a car not
+fully in view (side). Still below the bar for heavy vehicles (89.1 % and 97.5 % against 99 %);
+found and light at the bar over the seeds, not on every set-up. Pipeline time per frame: the same
+with and without the check (28.5-30.6 ms on 1900, the machine shared); the views kept to the end
+of the video cost memory (not measured: every blob's outline, 8 bytes per point, until the end).
 """
 
 import argparse
@@ -495,7 +570,7 @@ def written_scene(name, args, folder):
              (("video", "video.mkv"), ("camera", "camera.json"), ("vehicles", "vehicles.csv"), ("boxes", "boxes.csv"))}
     if not all(os.path.exists(p) for p in paths.values()):
         scene = make_road_scene(scaled_setup(name, args.video_scale), n_vehicles=args.video_vehicles,
-                                seed=args.video_seed)
+                                seed=args.video_seed, class_mix=args.video_class_mix)
         scene.write(folder, video="video.mkv")
     return paths
 
@@ -609,6 +684,8 @@ def main():
                         help="pipeline parameters other than the defaults (measure_vehicles' keywords)")
     parser.add_argument("--video-scale", type=float, default=1.0,
                         help="render the video scenes at this multiple of the set-ups' resolution (960x540)")
+    parser.add_argument("--video-class-mix", nargs="+", default=None, metavar="CLASS=SHARE",
+                        help="the video scenes' class mix (default: the generator's; e.g. more heavies)")
     parser.add_argument("--scene-dir", default=None,
                         help="write the video scenes here and reuse them on later runs (rendering is slow)")
     parser.add_argument("--video-only", action="store_true", help="skip Table 1 (from observations)")
@@ -616,6 +693,8 @@ def main():
     args = parser.parse_args()
     args.video_set = {name: float(value) if "." in value else int(value)
                       for name, value in (item.split("=", 1) for item in args.video_set)}
+    if args.video_class_mix is not None:
+        args.video_class_mix = {c: float(share) for c, share in (item.split("=", 1) for item in args.video_class_mix)}
     if args.video_seed is None:
         args.video_seed = args.seed + 100
     if not args.video_only:

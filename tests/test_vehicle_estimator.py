@@ -135,6 +135,9 @@ def test_frames_used_never_fully_in_view_and_the_parameters(camera):
         vtrack.vehicles.VehicleDimensionEstimator(camera, outlier_gate=-1.0)
     with pytest.raises(ValueError, match="foot_gate"):  # checked before the video is opened
         vtrack.vehicles.measure_vehicles("no-such-video.mkv", camera, foot_gate=float("nan"))
+    for bad in (-0.5, float("inf")):
+        with pytest.raises(ValueError, match="hidden_horizon"):
+            vtrack.vehicles.measure_vehicles("no-such-video.mkv", camera, hidden_horizon=bad)
     light = [m for m in vtrack.vehicles.table1_vehicle_models() if not m["heavy"]]
     only_light = vtrack.vehicles.VehicleDimensionEstimator(camera, models=light, light_heavy_rule="class")
     only_light.update(1, np.array([400.0, 300.0, 60.0, 50.0]))
@@ -216,29 +219,39 @@ def test_tracks_keep_their_vehicle_through_long_merges(tmp_path):
     assert_each_vehicle_once_and_right(scene, paths, vehicles, rows)
 
 
-def test_a_track_keeps_the_vehicle_whose_foot_it_follows_when_a_blob_parts(tmp_path):
+def stacked_pair_frames(folder, n_frames, split):
     """Two painted boxes stacked in the image as one blob (a near vehicle A, 20 x 40 px, below a
-    wider far one B, 40 x 30 px, both moving down 1 px per frame), until A comes apart 8 px lower.
-    The track followed the blob's lowest point, A's. B's box then overlaps the track's predicted
-    box more than A's does: without the foot gate the track jumps to B (its foot 41 px off the
-    predicted one) and A starts a new track; with the default (foot_gate 0.5 of the predicted
-    box's 70 px) the track stays on A and B starts its own, one track to the end."""
+    wider far one B, 40 x 30 px, both moving down 1 px per frame from frame 1), until A comes apart
+    8 px lower at frame `split`. Writes the frames to `folder` and the small mast's camera beside
+    it; returns the camera file."""
     import cv2
     from vtrack.synthetic_road import CameraSetup
     scene = make_road_scene(CameraSetup(**SMALL_MAST), n_vehicles=1, seed=0)
-    (tmp_path / "camera.json").write_text(json.dumps(scene.camera_file()))
-    frames, split = tmp_path / "frames", 30
-    frames.mkdir()
-    for k in range(45):
+    camera = folder.parent / "camera.json"
+    camera.write_text(json.dumps(scene.camera_file()))
+    folder.mkdir()
+    for k in range(n_frames):
         img = np.full((180, 320, 3), 110, np.uint8)
         if k >= 1:
             foot, gap = 80 + k, 0 if k < split else 8
             cv2.rectangle(img, (150, foot - 39 + gap), (169, foot + gap), (40, 40, 200), -1)  # A
             cv2.rectangle(img, (140, foot - 69), (179, foot - 40), (200, 60, 40), -1)  # B, above A
-        cv2.imwrite(str(frames / f"{k:04d}.png"), img)
+        cv2.imwrite(str(folder / f"{k:04d}.png"), img)
+    return camera
+
+
+def test_a_track_keeps_the_vehicle_whose_foot_it_follows_when_a_blob_parts(tmp_path):
+    """The stacked pair parts at frame 30 of 45. The track followed the blob's lowest point, A's.
+    B's box then overlaps the track's predicted box more than A's does: without the foot gate the
+    track jumps to B (its foot 41 px off the predicted one) and A starts a new track; with the
+    default (foot_gate 0.5 of the predicted box's 70 px) the track stays on A and B starts its own,
+    one track to the end. (hidden_horizon 0: the union's rows stay the track's, see the next test.)"""
+    split = 30
+    camera = stacked_pair_frames(tmp_path / "frames", 45, split)
 
     def tracks(**params):
-        _, rows = vtrack.vehicles.measure_vehicles(frames, tmp_path / "camera.json", return_tracks=True, **params)
+        _, rows = vtrack.vehicles.measure_vehicles(tmp_path / "frames", camera, return_tracks=True,
+                                                   hidden_horizon=0.0, **params)
         before = {int(r[1]) for r in rows if r[0] <= split}
         after_a = {int(r[1]) for r in rows if r[0] > split and r[3] > 60}  # box top below B's bottom
         after_b = {int(r[1]) for r in rows if r[0] > split and r[3] <= 60}
@@ -248,6 +261,38 @@ def test_a_track_keeps_the_vehicle_whose_foot_it_follows_when_a_blob_parts(tmp_p
     assert len(before) == 1 and after_a == before and len(after_b) == 1 and not after_b & before
     before, after_a, after_b = tracks(foot_gate=0.0)
     assert before < after_b and not after_a & before
+
+
+def test_outlines_of_a_vehicle_found_later_are_not_the_track_s_own(tmp_path):
+    """The stacked pair parts at frame 26 (video frame 25) of 60: until then one blob, A's track
+    (its lowest point is A's), with no track of B to mark it as two vehicles'. B's track, from the
+    split on, predicted back along its road line, lies inside every one of those blobs
+    (hidden_horizon 1: within its 35 frames of passage), so they are B hidden in A's outline: A's
+    track has no row before the split (its rows are its own 20 px wide box) and its estimate is
+    that of an estimator given A's own rectangles from the split on (an independent run). With
+    hidden_horizon 0 the union's outlines are A's: its rows (70 px tall) and its estimate take them."""
+    split = 25
+    camera = stacked_pair_frames(tmp_path / "frames", 60, split)
+
+    def run(**params):
+        vehicles, rows = vtrack.vehicles.measure_vehicles(tmp_path / "frames", camera, return_tracks=True, **params)
+        (a,) = {int(r[1]) for r in rows if r[0] > split + 1 and r[4] == 20.0}  # A's own box, 20 px wide
+        return next(e for e in vehicles if e["vehicle_id"] == a), rows[rows[:, 1] == a]
+
+    a, rows = run()
+    assert rows[:, 0].min() > split and np.all(rows[:, 4] == 20.0) and np.all(rows[:, 5] == 40.0)
+    assert a["first_frame"] == 2 and a["frames_seen"] == 59  # seen from frame 2 (the KDE's first)
+    own = vtrack.vehicles.VehicleDimensionEstimator(vtrack.vehicles.read_camera_file(camera))
+    for k in range(split, 60):
+        foot = 80 + k + 8  # A's bottom row, 8 px below B after the split
+        own.update(a["vehicle_id"], np.array([[150, foot - 39], [150, foot], [169, foot], [169, foot - 39]], float),
+                   frame=k + 1)
+    expected = own.estimate(a["vehicle_id"])
+    assert a["valid"] and [a[x] for x in "WHL"] == pytest.approx([expected[x] for x in "WHL"], abs=1e-9)
+    assert a["frames_used"] == expected["frames_used"]
+    before, rows_before = run(hidden_horizon=0.0)
+    assert rows_before[:, 0].min() == 2 and rows_before[:, 5].max() == 70.0  # the union's boxes
+    assert abs(before["L"] - a["L"]) > 0.5  # the union's outlines moved the estimate
 
 
 def test_blob_pixel_sizes_follow_the_focal_length(tmp_path):

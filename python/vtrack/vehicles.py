@@ -63,9 +63,10 @@ def measure_vehicles(video: Union[str, PathLike], camera: CameraLike, *,
     file. config: a file or sections ``{"seed", "background", "blobs", "estimator"}``. params: any
     parameter of those sections by name (the estimator's are
     :meth:`VehicleDimensionEstimator.default_params`; blobs: foreground_threshold, blob_closing,
-    min_area, min_overlap, merge_min_share, foot_gate, lost_memory, confirm_frames; background:
-    ``KdeBackground``'s). out, tracks, render: also write vehicles.csv, the MOTChallenge rows of
-    the vehicles' image boxes, the annotated video. progress: True or a callable(done, total).
+    min_area, min_overlap, merge_min_share, foot_gate, hidden_horizon, lost_memory, confirm_frames;
+    background: ``KdeBackground``'s). out, tracks, render: also write vehicles.csv, the MOTChallenge
+    rows of the vehicles' image boxes, the annotated video. progress: True or a callable(done,
+    total).
 
     Returns one dict per vehicle (as :meth:`VehicleDimensionEstimator.estimates`), and with
     return_tracks also the (N, 10) MOTChallenge rows.

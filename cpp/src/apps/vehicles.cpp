@@ -8,8 +8,9 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <tuple>
 #include <memory>
+#include <optional>
+#include <set>
 
 #include <opencv2/imgproc.hpp>
 
@@ -155,6 +156,7 @@ const core::ParameterTable<VehicleBlobParams>& VehicleBlobParams::table() {
                             .add("min_overlap", &P::min_overlap)
                             .add("merge_min_share", &P::merge_min_share)
                             .add("foot_gate", &P::foot_gate)
+                            .add("hidden_horizon", &P::hidden_horizon)
                             .add("lost_memory", &P::lost_memory)
                             .add("confirm_frames", &P::confirm_frames);
   return t;
@@ -171,6 +173,8 @@ void validate(const VehicleBlobParams& p) {
           p.merge_min_share, "in [0, 1]");
   require(p.foot_gate >= 0.0 && std::isfinite(p.foot_gate), "foot_gate", p.foot_gate,
           "a finite number >= 0 (a share of the predicted box's height; 0: off)");
+  require(p.hidden_horizon >= 0.0 && std::isfinite(p.hidden_horizon), "hidden_horizon", p.hidden_horizon,
+          "a finite number >= 0 (a share of a track's passage; 0: off)");
   require(p.lost_memory >= 0 && p.lost_memory <= 1000, "lost_memory", p.lost_memory, "in [0, 1000]");
   require(p.confirm_frames >= 1 && p.confirm_frames <= 1000, "confirm_frames", p.confirm_frames, "in [1, 1000]");
 }
@@ -335,19 +339,26 @@ struct BlobTrack {
 // the box follows its image and scales by the ratio of the depths (a vehicle's image size is
 // inversely proportional to its depth). Otherwise (a new track, a silhouette cut at its foot by
 // the image border) at constant image velocity.
-cv::Rect2d predicted(const BlobTrack& t, long long frame, const models::Camera& camera) {
-  const cv::Rect2d by_image = t.box + t.velocity * static_cast<double>(frame - t.last_frame);
-  if (!t.ground.has_velocity() || t.ground_frame != t.last_matched) return by_image;
-  const Eigen::Vector2d g0 = t.ground.at(t.ground_frame), g1 = t.ground.at(frame);
+// The road part of predicted(): the box at `frame` of a vehicle whose ground point moves along
+// `line`, seen at `anchor_frame` with image box `box` and foot `foot`; nullopt when either ground
+// point is not in front of the camera or the foot does not project.
+std::optional<cv::Rect2d> road_box(const GroundLine& line, long long anchor_frame, const cv::Rect2d& box,
+                                   const cv::Point2d& foot, long long frame, const models::Camera& camera) {
+  const Eigen::Vector2d g0 = line.at(anchor_frame), g1 = line.at(frame);
   const auto& c = camera.calibration();
   const double depth0 = (c.R * Eigen::Vector3d(g0.x(), g0.y(), 0.0) + c.t).z();
   const double depth1 = (c.R * Eigen::Vector3d(g1.x(), g1.y(), 0.0) + c.t).z();
-  if (!(depth0 > 0.0 && depth1 > 0.0)) return by_image;
-  const Eigen::Vector2d foot = camera.road_to_image_points(g1).col(0);
-  if (!foot.allFinite()) return by_image;
+  if (!(depth0 > 0.0 && depth1 > 0.0)) return std::nullopt;
+  const Eigen::Vector2d to = camera.road_to_image_points(g1).col(0);
+  if (!to.allFinite()) return std::nullopt;
   const double s = depth0 / depth1;
-  const cv::Point2d f(foot.x(), foot.y());
-  return {f + s * (t.ground_box.tl() - t.foot), cv::Size2d(s * t.ground_box.width, s * t.ground_box.height)};
+  return cv::Rect2d(cv::Point2d(to.x(), to.y()) + s * (box.tl() - foot), cv::Size2d(s * box.width, s * box.height));
+}
+
+cv::Rect2d predicted(const BlobTrack& t, long long frame, const models::Camera& camera) {
+  const cv::Rect2d by_image = t.box + t.velocity * static_cast<double>(frame - t.last_frame);
+  if (!t.ground.has_velocity() || t.ground_frame != t.last_matched) return by_image;
+  return road_box(t.ground, t.ground_frame, t.ground_box, t.foot, frame, camera).value_or(by_image);
 }
 
 // Whether blob b's lowest point agrees with track t's road prediction (header: foot_gate): within
@@ -465,6 +476,134 @@ std::vector<Assignment> associate(std::vector<BlobTrack>& tracks, const std::vec
   return out;
 }
 
+// A blob that continued or started a track, kept to the end of the video: the estimators get a
+// track's outlines only when every track's passage is known (hidden_views()).
+struct TrackView {
+  long long frame = 0;
+  bool joined = false;  // associate(): its pixels also cover a smaller track's predicted box
+  Blob blob;
+};
+
+// A confirmed track's passage for hidden_in(): its views in frame order, the least-squares line
+// through their ground points, and its first and last views with a ground point (the anchors its
+// box is predicted from before and after its passage, as predicted() does from the last one).
+struct Passage {
+  int id = 0;
+  const std::vector<TrackView>* views = nullptr;
+  GroundLine line;
+  const TrackView* first_anchor = nullptr;
+  const TrackView* last_anchor = nullptr;
+};
+
+Passage passage_of(int id, const std::vector<TrackView>& views) {
+  Passage out;
+  out.id = id;
+  out.views = &views;
+  for (const auto& v : views) {
+    if (!v.blob.has_ground) continue;
+    out.line.add(v.frame, v.blob.ground);
+    if (!out.first_anchor) out.first_anchor = &v;
+    out.last_anchor = &v;
+  }
+  return out;
+}
+
+// Whether vehicle `other`, with no blob of its own at frame k, lies in `box` then (header:
+// hidden_horizon): k within horizon x its passage's length of its passage, and its road-predicted
+// box at k, from its nearer anchor, inside the image, of at least min_area and half or more inside
+// `box` (the share associate() asks of a merge or join).
+bool hidden_in(const Passage& other, const cv::Rect2d& box, long long k, const VehicleBlobParams& p,
+               const cv::Size& image, const models::Camera& camera) {
+  const auto& views = *other.views;
+  const long long first = views.front().frame, last = views.back().frame;
+  const double span = p.hidden_horizon * static_cast<double>(last - first + 1);
+  if (!other.line.has_velocity() || k < first - span || k > last + span) return false;
+  const auto at_k = std::lower_bound(views.begin(), views.end(), k,
+                                     [](const TrackView& v, long long f) { return v.frame < f; });
+  if (at_k != views.end() && at_k->frame == k) return false;
+  const TrackView& a = (k > last || (k >= first && k - first > last - k)) ? *other.last_anchor : *other.first_anchor;
+  const auto b = road_box(other.line, a.frame, cv::Rect2d(a.blob.box), a.blob.foot, k, camera);
+  if (!b || b->area() < p.min_area || b->x < 0.0 || b->y < 0.0 || b->br().x > image.width ||
+      b->br().y > image.height) {
+    return false;
+  }
+  return (box & *b).area() >= 0.5 * b->area();
+}
+
+// The (track id, frame) of every confirmed track's own view (not joined) whose blob holds another
+// confirmed vehicle then hidden (hidden_in()): an outline of two vehicles, no one cuboid's.
+std::set<std::pair<int, long long>> hidden_views(const std::map<int, std::vector<TrackView>>& views,
+                                                 const std::vector<int>& confirmed, const VehicleBlobParams& p,
+                                                 const cv::Size& image, const models::Camera& camera) {
+  std::set<std::pair<int, long long>> out;
+  if (p.hidden_horizon <= 0.0) return out;
+  std::vector<Passage> passages;
+  for (int id : confirmed) passages.push_back(passage_of(id, views.at(id)));
+  for (const auto& a : passages) {
+    core::poll_interrupt();
+    for (const auto& v : *a.views) {
+      if (v.joined) continue;
+      for (const auto& b : passages) {
+        if (b.id != a.id && hidden_in(b, cv::Rect2d(v.blob.box), v.frame, p, image, camera)) {
+          out.emplace(a.id, v.frame);
+          break;
+        }
+      }
+    }
+  }
+  return out;
+}
+
+// One outline to an estimator; a blob reaching above the horizon (sky, a gantry's structure) is no
+// vehicle on the road and is skipped.
+void update(filters::VehicleDimensionEstimator& estimator, int id, long long frame, const Blob& blob) {
+  if (blob.contour.size() < 3) return;
+  Eigen::Matrix2Xd poly(2, static_cast<Eigen::Index>(blob.contour.size()));
+  for (std::size_t i = 0; i < blob.contour.size(); ++i) {
+    poly.col(static_cast<Eigen::Index>(i)) << blob.contour[i].x, blob.contour[i].y;
+  }
+  try {
+    estimator.update_polygon(id, static_cast<int>(frame), poly);
+  } catch (const InvalidArgument&) {
+  }
+}
+
+// The confirmed tracks as vehicles (by id): each one's own outlines go to `own`, those joined with
+// or holding another vehicle (associate(), hidden_views()) to `joined`, whose answer is used only
+// for a vehicle with no clean view; the rows of hidden views are dropped (as a merge's: no one
+// vehicle's box). first/last_frame and frames_seen count every view.
+void finish(VehiclePipelineResult& result, const std::map<int, std::vector<TrackView>>& views,
+            const VehicleBlobParams& p, const cv::Size& image, filters::VehicleDimensionEstimator& own,
+            filters::VehicleDimensionEstimator& joined) {
+  std::vector<int> confirmed;
+  for (const auto& [id, vs] : views) {
+    if (static_cast<int>(vs.size()) >= p.confirm_frames) confirmed.push_back(id);
+  }
+  const auto hidden = hidden_views(views, confirmed, p, image, own.camera());
+  for (int id : confirmed) {
+    core::poll_interrupt();
+    for (const auto& v : views.at(id)) {
+      update(v.joined || hidden.count({id, v.frame}) ? joined : own, id, v.frame, v.blob);
+    }
+    filters::VehicleEstimate e;
+    if (own.next_frame(id) > 1) e = own.estimate(id);
+    if (!e.valid && joined.next_frame(id) > 1) e = joined.estimate(id);
+    e.vehicle_id = id;
+    e.first_frame = static_cast<int>(views.at(id).front().frame);
+    e.last_frame = static_cast<int>(views.at(id).back().frame);
+    e.frames_seen = static_cast<int>(views.at(id).size());
+    result.vehicles.push_back(e);
+  }
+  auto& rows = result.tracks;
+  rows.erase(std::remove_if(rows.begin(), rows.end(),
+                            [&](const TrackRow& r) {
+                              const int id = static_cast<int>(r.id);
+                              return static_cast<int>(views.at(id).size()) < p.confirm_frames ||
+                                     hidden.count({id, r.frame});
+                            }),
+             rows.end());
+}
+
 models::Camera camera_for(const models::Camera& camera, int width, int height) {
   models::CameraCalibration c = camera.calibration();
   if (c.image_width > 0 && (c.image_width != width || c.image_height != height)) {
@@ -494,15 +633,20 @@ VehiclePipelineResult measure_vehicles(const std::string& video, const models::C
   VideoSource source(video);
   filters::VehicleDimensionEstimator estimator(camera_for(camera, source.width(), source.height()), std::move(models),
                                                params.estimator);
-  // Outlines joined with a small vehicle's pixels (associate) go to a second estimator, used only
-  // for a vehicle with no clean view: a large vehicle with distant ones in its outline all along.
+  // Outlines of more than one vehicle (finish()) go to a second estimator, used only for a vehicle
+  // with no clean view: a large vehicle with distant ones in its outline all along.
   filters::VehicleDimensionEstimator joined_views(estimator.camera(), estimator.prior().params().models,
                                                   params.estimator);
   image::KdeBackground background(params.background);
   std::unique_ptr<AtomicVideoWriter> writer;
+  // The rendered video's running class: the clean outlines as they come (the estimators proper
+  // see the outlines at the end, finish()).
+  std::unique_ptr<filters::VehicleDimensionEstimator> live;
   if (!render.empty()) {
     writer = std::make_unique<AtomicVideoWriter>(render, source.fps() > 0 ? source.fps() : 25.0,
                                                  cv::Size(source.width(), source.height()));
+    live = std::make_unique<filters::VehicleDimensionEstimator>(estimator.camera(), estimator.prior().params().models,
+                                                                params.estimator);
   }
   const Eigen::Matrix3d& K = estimator.camera().calibration().K;
   const VehicleBlobParams blob = blob_sizes_for(params.blobs, std::sqrt(K(0, 0) * K(1, 1)));
@@ -511,6 +655,7 @@ VehiclePipelineResult measure_vehicles(const std::string& video, const models::C
                              : cv::Mat();
   VehiclePipelineResult result;
   std::vector<BlobTrack> tracks;
+  std::map<int, std::vector<TrackView>> views;
   int next_id = 1;
   cv::Mat frame, y, mask, labels;
   while (source.read(frame)) {
@@ -523,29 +668,20 @@ VehiclePipelineResult measure_vehicles(const std::string& video, const models::C
     const auto matched = associate(tracks, blobs, labels, k, blob, estimator.camera(), next_id);
     for (std::size_t b = 0; b < blobs.size(); ++b) {
       if (matched[b].merged) continue;  // two or more vehicles in one blob: no one's silhouette
-      const BlobTrack& t = tracks[matched[b].track];
+      const int id = tracks[matched[b].track].id;
       const cv::Rect& r = blobs[b].box;
       // Pixel boxes of whole pixels i0..i1: x = i0 - 0.5, w = i1 - i0 + 1 (continuous coordinates).
-      result.tracks.push_back({k, static_cast<std::uint64_t>(t.id), static_cast<float>(r.x - 0.5),
+      result.tracks.push_back({k, static_cast<std::uint64_t>(id), static_cast<float>(r.x - 0.5),
                                static_cast<float>(r.y - 0.5), static_cast<float>(r.width),
                                static_cast<float>(r.height), 1.0});
-      if (blobs[b].contour.size() >= 3) {
-        Eigen::Matrix2Xd poly(2, static_cast<Eigen::Index>(blobs[b].contour.size()));
-        for (std::size_t i = 0; i < blobs[b].contour.size(); ++i) {
-          poly.col(static_cast<Eigen::Index>(i)) << blobs[b].contour[i].x, blobs[b].contour[i].y;
-        }
-        try {
-          (matched[b].joined ? joined_views : estimator).update_polygon(t.id, static_cast<int>(k), poly);
-        } catch (const InvalidArgument&) {
-          // A blob reaching above the horizon (sky, a gantry's structure) is no vehicle on the road.
-        }
-      }
+      views[id].push_back({k, matched[b].joined, blobs[b]});
+      if (live && !matched[b].joined) update(*live, id, k, blobs[b]);
     }
     if (writer) {
       for (std::size_t b = 0; b < blobs.size(); ++b) {
         if (matched[b].merged) continue;
         const int id = tracks[matched[b].track].id;
-        if (estimator.next_frame(id) > 1) draw(frame, blobs[b], id, estimator);
+        if (live->next_frame(id) > 1) draw(frame, blobs[b], id, *live);
       }
       writer->write(frame);
     }
@@ -556,27 +692,8 @@ VehiclePipelineResult measure_vehicles(const std::string& video, const models::C
   }
   if (result.frames == 0) throw IoError("video '" + video + "' has no frames");
   // Confirmed tracks only, their rows too; a track whose blobs were always merged with another
-  // vehicle's was never fully in view on its own: reported as such.
-  std::map<int, int> hits;
-  std::map<int, std::pair<int, int>> span;
-  for (const auto& r : result.tracks) {
-    const int id = static_cast<int>(r.id);
-    if (hits[id]++ == 0) span[id].first = static_cast<int>(r.frame);
-    span[id].second = static_cast<int>(r.frame);
-  }
-  for (const auto& [id, n] : hits) {
-    if (n < blob.confirm_frames) continue;
-    filters::VehicleEstimate e;
-    if (estimator.next_frame(id) > 1) e = estimator.estimate(id);
-    if (!e.valid && joined_views.next_frame(id) > 1) e = joined_views.estimate(id);
-    e.vehicle_id = id;
-    std::tie(e.first_frame, e.last_frame) = span[id];  // the frames seen, merged ones included
-    e.frames_seen = n;
-    result.vehicles.push_back(e);
-  }
-  result.tracks.erase(std::remove_if(result.tracks.begin(), result.tracks.end(),
-                                     [&](const TrackRow& r) { return hits[static_cast<int>(r.id)] < blob.confirm_frames; }),
-                      result.tracks.end());
+  // vehicle's has no views and is not reported.
+  finish(result, views, blob, cv::Size(source.width(), source.height()), estimator, joined_views);
   if (writer) writer->commit();
   return result;
 }

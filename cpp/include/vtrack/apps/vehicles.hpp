@@ -89,6 +89,22 @@ void write_vehicles_csv(const std::string& path, const std::vector<filters::Vehi
 // below a far lorry under the gantry). It then starts a track of its own instead of switching
 // this one to the other vehicle and bending its road line. A ratio of the vehicle's own image
 // size: the same at any resolution (benchmarks/vehicles.py: the values tried).
+// Outlines of two vehicles found afterwards: a vehicle far behind a nearer one in the same lane
+// (under a gantry, on a low mast) shows above it in the image, and the two emerge from the distance
+// as one blob; no track of the far one exists yet, so nothing marks the blob as two vehicles' and
+// its outline, tens of frames of it, reaches the near one's estimator, and its box, scored as the
+// far vehicle's, the track rows (benchmarks/vehicles.py: the missed cars and heavies called light
+// of the tuning scenes). When the blob parts, the far vehicle gets a track of its own, and its
+// road line says where it was before. So the estimators get the outlines at the end of the video:
+// a track's view is "hidden" when another confirmed track, with no blob of its own in that frame
+// and within hidden_horizon times its own passage's length (in frames) of its passage, has its
+// road-predicted box (predicted() from its first or last view with a ground point, whichever is
+// nearer) inside the image, at least min_area, and half or more inside the view's blob box. A
+// hidden view goes to the second estimator, as a joined one, and has no track row (as a merge: no
+// one vehicle's box). A ratio of the vehicles' own passages, the same at any frame rate. 0 = off
+// (every view as the tracker saw it; each vehicle's estimate is then what it was when the
+// estimator was fed frame by frame). The cost: every view is kept (outline included) until the end
+// of the video.
 // Vehicles side by side at the same speed for their whole passage stay one blob: one track, the
 // estimator fed a two-vehicle outline (a limitation; benchmarks/vehicles.py counts it). A track
 // matched in fewer than confirm_frames frames is not reported (a flicker of the background).
@@ -105,6 +121,7 @@ struct VehicleBlobParams {
   double min_overlap = 0.2;           // intersection over union to continue a track
   double merge_min_share = 0.2;       // a merge member's predicted box area / the blob box's (above)
   double foot_gate = 0.5;             // foot off the predicted one / predicted height (above); 0 = off
+  double hidden_horizon = 1.0;        // outlines holding a hidden vehicle, x its passage (above); 0 = off
   int lost_memory = 5;                // frames a track may go unmatched (it coasts through merges)
   int confirm_frames = 3;             // matched frames for a track to be a vehicle
 
