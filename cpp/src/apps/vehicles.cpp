@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <numeric>
 #include <memory>
 #include <optional>
 #include <set>
@@ -508,6 +509,13 @@ Passage passage_of(int id, const std::vector<TrackView>& views) {
   return out;
 }
 
+// The frames in which a passage may hide in another track's blob (hidden_in()'s window).
+std::pair<double, double> hiding_window(const Passage& a, const VehicleBlobParams& p) {
+  const long long first = a.views->front().frame, last = a.views->back().frame;
+  const double span = p.hidden_horizon * static_cast<double>(last - first + 1);
+  return {static_cast<double>(first) - span, static_cast<double>(last) + span};
+}
+
 // Whether vehicle `other`, with no blob of its own at frame k, lies in `box` then (header:
 // hidden_horizon): k within horizon x its passage's length of its passage, and its road-predicted
 // box at k, from its nearer anchor, inside the image, of at least min_area and half or more inside
@@ -516,8 +524,9 @@ bool hidden_in(const Passage& other, const cv::Rect2d& box, long long k, const V
                const cv::Size& image, const models::Camera& camera) {
   const auto& views = *other.views;
   const long long first = views.front().frame, last = views.back().frame;
-  const double span = p.hidden_horizon * static_cast<double>(last - first + 1);
-  if (!other.line.has_velocity() || k < first - span || k > last + span) return false;
+  const auto [window_start, window_end] = hiding_window(other, p);
+  const auto frame = static_cast<double>(k);
+  if (!other.line.has_velocity() || frame < window_start || frame > window_end) return false;
   const auto at_k = std::lower_bound(views.begin(), views.end(), k,
                                      [](const TrackView& v, long long f) { return v.frame < f; });
   if (at_k != views.end() && at_k->frame == k) return false;
@@ -531,20 +540,38 @@ bool hidden_in(const Passage& other, const cv::Rect2d& box, long long k, const V
 }
 
 // The (track id, frame) of every confirmed track's own view (not joined) whose blob holds another
-// confirmed vehicle then hidden (hidden_in()): an outline of two vehicles, no one cuboid's.
+// confirmed vehicle then hidden (hidden_in()): an outline of two vehicles, no one cuboid's. Each
+// track's views are tested only against the passages whose hiding window overlaps its frames: all
+// of them would make the test O(views x vehicles), hours at the end of hours of road video.
 std::set<std::pair<int, long long>> hidden_views(const std::map<int, std::vector<TrackView>>& views,
                                                  const std::vector<int>& confirmed, const VehicleBlobParams& p,
                                                  const cv::Size& image, const models::Camera& camera) {
   std::set<std::pair<int, long long>> out;
   if (p.hidden_horizon <= 0.0) return out;
   std::vector<Passage> passages;
-  for (int id : confirmed) passages.push_back(passage_of(id, views.at(id)));
+  std::vector<std::pair<double, double>> windows;
+  for (int id : confirmed) {
+    passages.push_back(passage_of(id, views.at(id)));
+    windows.push_back(hiding_window(passages.back(), p));
+  }
+  std::vector<std::size_t> by_start(passages.size());
+  std::iota(by_start.begin(), by_start.end(), std::size_t{0});
+  std::sort(by_start.begin(), by_start.end(),
+            [&](std::size_t i, std::size_t j) { return windows[i].first < windows[j].first; });
+  std::vector<const Passage*> nearby;
   for (const auto& a : passages) {
     core::poll_interrupt();
+    const auto first = static_cast<double>(a.views->front().frame);
+    const auto last = static_cast<double>(a.views->back().frame);
+    nearby.clear();
+    for (std::size_t i : by_start) {
+      if (windows[i].first > last) break;
+      if (windows[i].second >= first && passages[i].id != a.id) nearby.push_back(&passages[i]);
+    }
     for (const auto& v : *a.views) {
       if (v.joined) continue;
-      for (const auto& b : passages) {
-        if (b.id != a.id && hidden_in(b, cv::Rect2d(v.blob.box), v.frame, p, image, camera)) {
+      for (const Passage* b : nearby) {
+        if (hidden_in(*b, cv::Rect2d(v.blob.box), v.frame, p, image, camera)) {
           out.emplace(a.id, v.frame);
           break;
         }
