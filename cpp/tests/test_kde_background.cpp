@@ -160,9 +160,6 @@ TEST(KdeBackground, UpdateStaticTakesStartUpGhostsIntoTheStackWhileItFills) {
   EXPECT_NEAR(y.at<float>(5, 6), 0.0, 1e-6);
 }
 
-// Illumination compensation: a frame that is the sample under 1.3 x the light has the same r, g
-// and 1.3 x the intensity. Eq. (10) sees foreground (the intensity kernel alone, computed here
-// independently); compensated, the intensity is scaled back and y = 1.
 // y of frame `after` against a model that has seen `before` only (2 samples, no closing).
 static cv::Mat y_after(const cv::Mat& before, const cv::Mat& after, bool compensate) {
   KdeBackgroundParams p = no_closing(2, 100);
@@ -174,6 +171,9 @@ static cv::Mat y_after(const cv::Mat& before, const cv::Mat& after, bool compens
   return y;
 }
 
+// Illumination compensation: a frame that is the sample under 1.3 x the light has the same r, g
+// and 1.3 x the intensity. Eq. (10) sees foreground (the intensity kernel alone, computed here
+// independently); compensated, the intensity is scaled back and y = 1.
 TEST(KdeBackground, IlluminationCompensationCancelsAGlobalGain) {
   const cv::Mat dim(10, 12, CV_8UC3, cv::Scalar(60, 90, 120));
   const cv::Mat bright(10, 12, CV_8UC3, cv::Scalar(78, 117, 156));  // x 1.3 exactly

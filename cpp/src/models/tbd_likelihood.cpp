@@ -107,7 +107,6 @@ void TbdLikelihood::set_image(const cv::Mat& y) {
   // (a max/min over a replicated border equals one over the pixels inside), single-threaded
   // because the tracker runs one per camera.
   using Reference = TbdLikelihoodParams::DeltaBReference;
-  const bool person = params_.delta_b_reference == Reference::person;
   if ((params_.delta_b_reference != Reference::image ||
        (params_.closing_size == 0 && params_.closing_ratio > 0.0)) &&
       !has_person_size()) {
@@ -116,15 +115,24 @@ void TbdLikelihood::set_image(const cv::Mat& y) {
   }
   image::close_square(y, closed_, closing_pixels(), 1, &closing_workspace_);
   integral_.compute(closed_);
-  // Eq. (20)'s m delta_B, or a delta_B with a the person prior's area (see delta_b). "row" with
-  // row areas puts a(row_i) in m's place, pixel by pixel (set_row_reward); without them every
-  // row's area is the prior's (see delta_b_no_line).
-  const bool row = params_.delta_b_reference == Reference::row;
-  row_weighted_ = row && !row_areas_.empty();
-  const double area =
-      person || row ? person_width_ * person_height_ : static_cast<double>(y.total());
-  const double delta_b = row ? params_.delta_b_no_line : params_.delta_b;
-  inv_m_delta_b_ = row_weighted_ ? 1.0 / params_.delta_b_row : 1.0 / (area * delta_b);
+  // The reward's 1 / (m delta_B): eq. (20)'s image pixel count m ("image"); the person prior's
+  // area ("person", see delta_b); "row" with row areas a(row_i) in m's place, pixel by pixel
+  // (set_row_reward); "row" without them the prior's area on every row (see delta_b_no_line).
+  const double person_area = person_width_ * person_height_;
+  row_weighted_ = false;
+  switch (params_.delta_b_reference) {
+    case Reference::image:
+      inv_m_delta_b_ = 1.0 / (static_cast<double>(y.total()) * params_.delta_b);
+      break;
+    case Reference::person:
+      inv_m_delta_b_ = 1.0 / (person_area * params_.delta_b);
+      break;
+    case Reference::row:
+      row_weighted_ = !row_areas_.empty();
+      inv_m_delta_b_ = row_weighted_ ? 1.0 / params_.delta_b_row
+                                     : 1.0 / (person_area * params_.delta_b_no_line);
+      break;
+  }
   if (row_weighted_) set_row_reward();
 }
 
