@@ -80,6 +80,39 @@ off -> on):
 | 1.5x    | 0.575 / 0.617 -> 0.576 / 0.644 | 0.500 / 0.667 -> 0.504 / 0.691 | 0.648 / 0.605 -> 0.645 / 0.680 |
 (sigma 0.2, distance 3 at 768x576: 0.611 / 0.654.) Better on the tuning half and on every held-out
 half and scale: the MB default too.
+
+MB's particle counts (MultiBernoulliParams max_particles L_max / min_particles L_min; `--set
+max_particles=L --set min_particles=l`), 768x576 over tracker seeds 0-15 (0-3 where marked), and
+held out on the other variants over seeds 0-3 (`--variant V`); MOTA / IDF1, min = the lowest
+seed's MOTA on all frames:
+
+| L_max / L_min | all           | 1-397         | 398-795       | min   |
+|---------------|---------------|---------------|---------------|-------|
+| 400 / 50 (before) | 0.607 / 0.647 | 0.562 / 0.684 | 0.651 / 0.689 | 0.597 |
+| 800 / 100     | 0.615 / 0.650 | 0.570 / 0.690 | 0.658 / 0.688 | 0.606 |
+| 1600 / 50 (default) | 0.618 / 0.655 | 0.572 / 0.684 | 0.662 / 0.703 | 0.612 |
+| 1600 / 200    | 0.618 / 0.658 | 0.574 / 0.690 | 0.662 / 0.692 | 0.614 |
+| 3200 / 400    | 0.622 / 0.659 | 0.578 / 0.693 | 0.665 / 0.700 | 0.612 |
+| 400 / 200 (0-3) | 0.611 / 0.655 | 0.567 / 0.685 | 0.654 / 0.697 | 0.605 |
+
+| variant | 400 / 50 (before) | 1600 / 50 (default) | 1600 / 200 |
+|---------|-------------------|---------------------|------------|
+| 0.5x    | 0.605 / 0.645     | 0.625 / 0.682       | 0.626 / 0.642 |
+| 1.5x    | 0.579 / 0.663     | 0.590 / 0.645       | 0.589 / 0.631 |
+| crop    | 0.589 / 0.488     | 0.603 / 0.502       | 0.610 / 0.494 |
+| zoom    | 0.584 / 0.488     | 0.604 / 0.497       | 0.607 / 0.452 (3200 / 50: 0.599 / 0.463) |
+
+L_max is the filter's accuracy (a confirmed target holds L_max particles): MOTA rises with it on
+every variant and the seeds' spread shrinks, with most of the tuning half's gain reached at 1600
+(0.562 -> 0.572; 3200: 0.578 at twice the cost). L_min is left at 50: raising it did little for
+MOTA and cost the zoom's identities. Cost through the CLI pinned to one core (`taskset -c 1 vtrack
+track vtest.avi --method mb --set max_particles=L`, 795 frames, decode and KDE included): 6.6 /
+6.9 / 8.7 s for L_max 400 / 1600 / 3200. On the synthetic scenes held out
+(`benchmarks/synthetic_people.py --scene-seeds 31 32 --methods "vtrack MB"`) 1600 mends the 2x
+scene's wide person (MOTA 0.691 -> 0.961; one box now widens over the person before the strip
+it leaves is born as a second target), leaves the others within 0.01 but the dense ones (2x, 8
+people 0.857 -> 0.808, 16 people 0.727 -> 0.714; on scene seeds 11, 12, 21, 22 0.837 -> 0.892
+and 0.616 -> 0.614: the dense scenes' spread over seeds is wider than the change).
 """
 
 from __future__ import annotations

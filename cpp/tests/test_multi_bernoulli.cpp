@@ -491,7 +491,7 @@ TEST(MultiBernoulli, RejectsBadParametersNamingThem) {
   };
   expect_error([](MultiBernoulliParams& p) { p.survival_probability = 0.0; }, "survival_probability");
   expect_error([](MultiBernoulliParams& p) { p.survival_probability = 1.5; }, "survival_probability");
-  expect_error([](MultiBernoulliParams& p) { p.min_particles = 500; }, "min_particles");
+  expect_error([](MultiBernoulliParams& p) { p.min_particles = p.max_particles + 1; }, "min_particles");
   expect_error([](MultiBernoulliParams& p) { p.sigma_xy = 0.0; }, "sigma_xy");
   expect_error([](MultiBernoulliParams& p) { p.sigma_wh = -1.0; }, "sigma_wh");
   expect_error([](MultiBernoulliParams& p) { p.size.height_mean = -1.0; }, "height_mean");

@@ -402,7 +402,7 @@ class MultiBernoulliTracker:
         adaptive_birth_stride: float = 0.1,
         adaptive_birth_max: int = 3,
         min_particles: int = 50,
-        max_particles: int = 400,
+        max_particles: int = 1600,
         resampling: Literal["multinomial", "stratified", "systematic", "residual"] = 'systematic',
         prune_threshold: float = 0.01,
         merge_overlap: float = 0.6,
