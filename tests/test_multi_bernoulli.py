@@ -178,6 +178,37 @@ def test_two_touching_people_hold_two_tracks_with_the_default_track_management(s
                                    box_offset_y=0.0))
 
 
+def test_a_person_cut_by_the_border_is_boxed_as_the_whole_person():
+    # A 24 x 60 px person with half of it out of view at the left border, in a 320 x 240 image,
+    # the prior's size given. The filter's own box (the track's state) covers the part in view,
+    # [0, R]. Annotations box the whole person with a margin and clip that to the image, so the
+    # reported box is the calibration of the whole person's box [R - 24, R] (prior width 24),
+    # clipped: right edge R - 12 + box_offset_x x 24 + box_scale_w x 12, ~4 px beyond where the
+    # calibrated part in view would end. A person in view keeps its own box, calibrated.
+    d = vtrack.MultiBernoulliTracker.default_params()
+    t = vtrack.MultiBernoulliTracker((320, 240), seed=2, width_mean=24, height_mean=60)
+    for _ in range(15):
+        y = background(320, 240)
+        y[100:160, 0:12] = 0.1
+        y[100:160, 198:222] = 0.1
+        tracks = t.step(y)
+    assert len(tracks) == 2, tracks.boxes
+    order = np.argsort(np.asarray(tracks.boxes)[:, 0])
+    (cut, inside), (cut_state, inside_state) = (np.asarray(tracks.boxes)[order],
+                                                np.asarray(tracks.states)[order])
+    right = cut_state[0] + cut_state[2]
+    assert cut_state[0] < 1.0 and 6.0 < right < 14.0, cut_state
+    assert cut[0] == 0.0, cut
+    whole_right = right - 12.0 + d["box_offset_x"] * 24 + d["box_scale_w"] * 12
+    part_right = right * (0.5 + d["box_offset_x"] + 0.5 * d["box_scale_w"])
+    assert whole_right - part_right > 3.0  # the two conventions are told apart
+    assert cut[0] + cut[2] == pytest.approx(whole_right, abs=1e-3), (cut, cut_state)
+    x, _, w, _ = inside_state
+    assert inside[2] == pytest.approx(d["box_scale_w"] * w, abs=1e-3), (inside, inside_state)
+    assert inside[0] + 0.5 * inside[2] == pytest.approx(x + 0.5 * w + d["box_offset_x"] * w,
+                                                        abs=1e-3)
+
+
 @pytest.mark.parametrize("clip", [True, False])
 def test_box_clip_keeps_a_person_half_out_of_view_in_the_image(clip):
     # A person 12 x 30 px whose left half is out of view, standing at the left border: the

@@ -71,6 +71,29 @@ bool set_calibrated_box(const BoxCalibrationParams& c, double cx, double cy, dou
   return t.w > 0.0 && t.h > 0.0;
 }
 
+cv::Rect2d whole_person_box(const cv::Rect2d& box, const cv::Size2d& person, const cv::Size& image) {
+  cv::Rect2d whole = box;
+  const double right = box.x + box.width;
+  const double bottom = box.y + box.height;
+  if (box.width < person.width) {
+    if (box.x <= 1.0) {
+      whole.x = right - person.width;
+      whole.width = person.width;
+    } else if (right >= image.width - 1.0) {
+      whole.width = person.width;
+    }
+  }
+  if (box.height < person.height) {
+    if (box.y <= 1.0) {
+      whole.y = bottom - person.height;
+      whole.height = person.height;
+    } else if (bottom >= image.height - 1.0) {
+      whole.height = person.height;
+    }
+  }
+  return whole;
+}
+
 PersonHeight::PersonHeight(const PersonSizeParams& params, int image_height)
     : params_(params),
       estimator_(params.size_half_life > 0.0 ? params.size_half_life

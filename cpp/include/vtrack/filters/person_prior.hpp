@@ -69,6 +69,16 @@ void validate(const BoxCalibrationParams& params);
 bool set_calibrated_box(const BoxCalibrationParams& calibration, double cx, double cy, double w,
                         double h, int image_width, int image_height, TrackEstimate& t);
 
+// The box of the whole person behind a tracker's box cut by the image border: a side within a
+// pixel of the border is moved out until the box is at least `person` wide (left, right) or
+// tall (top, bottom), the opposite side kept. A box away from the border, or already as large,
+// is returned as it is. Why: the filter's box covers the part of a person in view, and the
+// calibration's margin is a share of the box it scales, whereas annotations box the whole person
+// with a margin and clip that to the image; the margin on the side in view must be the whole
+// person's (PETS09-S2L1's central crop: the boxes of people cut by the left border were 0.41 of
+// the annotation's width where the match failed).
+cv::Rect2d whole_person_box(const cv::Rect2d& box, const cv::Size2d& person, const cv::Size& image);
+
 // The person height in force: height_mean when given, else size_initial x the image height
 // until the foreground has shown enough evidence, then the learnt height.
 class PersonHeight {
