@@ -71,27 +71,34 @@ bool set_calibrated_box(const BoxCalibrationParams& c, double cx, double cy, dou
   return t.w > 0.0 && t.h > 0.0;
 }
 
+namespace {
+
+// One axis of whole_person_box: the interval [start, start + length) within a pixel of 0 or of
+// `extent` grows to `size` away from that border.
+void grow_out_of_border(double& start, double& length, double size, double extent) {
+  if (length >= size) return;
+  if (start <= 1.0) {
+    start += length - size;
+    length = size;
+  } else if (start + length >= extent - 1.0) {
+    length = size;
+  }
+}
+
+}  // namespace
+
 cv::Rect2d whole_person_box(const cv::Rect2d& box, const cv::Size2d& person, const cv::Size& image) {
   cv::Rect2d whole = box;
-  const double right = box.x + box.width;
-  const double bottom = box.y + box.height;
-  if (box.width < person.width) {
-    if (box.x <= 1.0) {
-      whole.x = right - person.width;
-      whole.width = person.width;
-    } else if (right >= image.width - 1.0) {
-      whole.width = person.width;
-    }
-  }
-  if (box.height < person.height) {
-    if (box.y <= 1.0) {
-      whole.y = bottom - person.height;
-      whole.height = person.height;
-    } else if (bottom >= image.height - 1.0) {
-      whole.height = person.height;
-    }
-  }
+  grow_out_of_border(whole.x, whole.width, person.width, image.width);
+  grow_out_of_border(whole.y, whole.height, person.height, image.height);
   return whole;
+}
+
+bool set_calibrated_person_box(const BoxCalibrationParams& calibration, const cv::Rect2d& box,
+                               const cv::Size2d& person, const cv::Size& image, TrackEstimate& t) {
+  const cv::Rect2d whole = whole_person_box(box, person, image);
+  return set_calibrated_box(calibration, whole.x + 0.5 * whole.width, whole.y + 0.5 * whole.height,
+                            whole.width, whole.height, image.width, image.height, t);
 }
 
 PersonHeight::PersonHeight(const PersonSizeParams& params, int image_height)

@@ -696,8 +696,9 @@ void ReclusteringSir::report(const cv::Mat& y, const cv::Mat& frame) {
     if (!management_.report(o.record, boxes[k])) continue;
     TrackEstimate t;
     t.id = o.label;
-    if (!set_calibrated_box(params_.box, o.estimate[0], o.estimate[1], boxes[k][2], boxes[k][3],
-                            width_, height_, t)) {
+    const Eigen::Vector2f person = 2.0f * half_size(o.estimate[1]);
+    if (!set_calibrated_person_box(params_.box, {boxes[k][0], boxes[k][1], boxes[k][2], boxes[k][3]},
+                                   {person[0], person[1]}, {width_, height_}, t)) {
       continue;
     }
     t.score = o.score;

@@ -79,6 +79,10 @@ bool set_calibrated_box(const BoxCalibrationParams& calibration, double cx, doub
 // the annotation's width where the match failed).
 cv::Rect2d whole_person_box(const cv::Rect2d& box, const cv::Size2d& person, const cv::Size& image);
 
+// set_calibrated_box of whole_person_box(box, person, image): what both foreground trackers report.
+bool set_calibrated_person_box(const BoxCalibrationParams& calibration, const cv::Rect2d& box,
+                               const cv::Size2d& person, const cv::Size& image, TrackEstimate& t);
+
 // The person height in force: height_mean when given, else size_initial x the image height
 // until the foreground has shown enough evidence, then the learnt height.
 class PersonHeight {
