@@ -586,7 +586,11 @@ void bind_pipeline(py::module_& m) {
           if (!out.empty()) apps::write_vehicles_csv(out, result.vehicles);
           if (!tracks.empty()) apps::write_mot(tracks, result.tracks);
         }
-        return py::make_tuple(estimates_list(result.vehicles), track_rows(result.tracks), result.frames);
+        py::dict counts;  // what the run held (HeldViews in src/apps/vehicles.cpp)
+        counts["frames"] = result.frames;
+        counts["views"] = result.views;
+        counts["peak_held_views"] = result.peak_held_views;
+        return py::make_tuple(estimates_list(result.vehicles), track_rows(result.tracks), counts);
       },
       py::arg("video"), py::arg("camera"), py::arg("models"), py::arg("config"), py::arg("params"),
       py::arg("render"), py::arg("out"), py::arg("tracks"), py::arg("progress"),

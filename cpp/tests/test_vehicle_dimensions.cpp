@@ -299,6 +299,15 @@ TEST(VehicleDimensionEstimator, SameSeedSameResultWhateverTheOrderOfVehicles) {
   filters::VehicleDimensionEstimator c(mast_camera(), {}, p);
   drive(c, 1, 0.9, {1.8, 1.5, 4.5}, 16.0, 30.0);
   EXPECT_NE(a.posterior(1)->samples, c.posterior(1)->samples);
+  // forget() (the video pipeline, streaming) releases one vehicle and leaves the others' answers
+  // as they were: vehicle 2 done with and forgotten before vehicle 1 is estimated, as in b.
+  const auto before = a.estimate(2).dimensions;
+  a.forget(2);
+  EXPECT_THROW(a.estimate(2), InvalidArgument);
+  EXPECT_EQ(a.next_frame(2), 1);
+  EXPECT_EQ(a.estimates().size(), 1u);
+  EXPECT_EQ(a.estimate(1).dimensions, b.estimate(1).dimensions);
+  EXPECT_EQ(before, b.estimate(2).dimensions);
 }
 
 TEST(VehicleDimensionEstimator, FramesUsedAndVehiclesNeverFullyInView) {

@@ -217,6 +217,10 @@ class VehicleDimensionEstimator {
   // The frame after the vehicle's last (1 for a new vehicle), for callers that number frames per vehicle.
   int next_frame(int vehicle_id) const;
   VehicleEstimate estimate(int vehicle_id) const;  // InvalidArgument for an unknown id
+  // Releases a vehicle's state (its per-frame terms and last posterior): a caller done with it
+  // (the video pipeline, streaming) keeps the memory bounded. The id is then unknown; updating
+  // it again starts a new vehicle. No-op for an unknown id.
+  void forget(int vehicle_id) { tracks_.erase(vehicle_id); }
   std::vector<VehicleEstimate> estimates() const;  // every vehicle, by id
   // The last used frame's posterior (nullptr before any used frame).
   const VehiclePosterior* posterior(int vehicle_id) const;
