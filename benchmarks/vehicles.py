@@ -401,6 +401,99 @@ fully in view (side). Still below the bar for heavy vehicles (89.1 % and 97.5 % 
 found and light at the bar over the seeds, not on every set-up. Pipeline time per frame: the same
 with and without the check (28.5-30.6 ms on 1900, the machine shared); the views kept to the end
 of the video cost memory (not measured: every blob's outline, 8 bytes per point, until the end).
+
+Issue 13, the memory of the held views (session vehicles10). The views (outlines) are no longer
+kept to the end of the video: a track's are finalised once every passage that could hide in them
+is known (apps/vehicles.cpp, HeldViews). The bound first tried, the longest passage seen so far
+times hidden_horizon, is not one: on a gantry stream (tests/test_vehicle_estimator.py's, 250
+vehicles at a sixth of the resolution) a 481-frame track came after passages of at most 107
+frames and reached back into views already finalised (rows differed from holding them all; 4 x
+the longest so far failed on the same stream). Passages have no bound a video proves (a vehicle
+stops, a ghost stays), so one is chosen: only passages of at most hidden_max_passage = 120 s hide
+(longer ones are stopped vehicles or ghosts, whose constant-velocity road line says nothing of
+where they were), and views are finalised once every running track of at most that span and every
+track yet to start is provably too far to reach them. Exact: the answer equals holding every view
+to the end under the same rule (hold_views=true; the test asserts it on the stream), and the rule
+equals the previous one wherever no passage is longer than 120 s. Byte-identical vehicles.csv and
+tracks to main's build (`vtrack vehicles VIDEO --camera camera.json --out v.csv --tracks t.txt`)
+on gantry 300 (44 lines, 4116 rows), mast_low 1500 (55, 3143) and side 700 (45, 2910), 40
+vehicles each, and on a long scene: gantry at 480x270, 300 vehicles, seed 4242, 8747 frames (350
+s at 25 frames/s; render: make_road_scene(dataclasses.replace(CAMERA_SETUPS["gantry"], focal=450,
+image_width=480, image_height=270), n_vehicles=300, seed=4242)): 378 vehicles, 30810 rows,
+identical. Peak RSS (`/usr/bin/time -f %M vtrack vehicles ...`, same run): main 107.7 MB, streaming
+97.3 MB, 67 s each. At 480x270 an outline is small (CHAIN_APPROX_SIMPLE keeps the corners), so
+the views held to the end cost ~10 MB over the 8747 frames. Views held at once (`vtrack._core.
+_measure_vehicles(...)[2]`, counts of the same scene): streaming at most 15898 of the 33312 views,
+hold_views=true 33115 (the unconfirmed flickers go as they end). The bound is (1 + hidden_horizon)
+x 120 s = 240 s of views, most of this 350 s scene; on an hour of video it is 7 % of the views
+(~18 MB at 960x540 and ~3 vehicles in view), and it does not grow with the video. Pipeline time:
+the same (67.1 s main, 67.7 s streaming on the long scene; 19.4 / 19.5 s on gantry 300).
+
+Issue 13, heavies held out (session vehicles10). Seeds 1100 and 1300 are tuning seeds from now on
+(their failures were traced this session); the tuning seeds are 100, 300, 700, 1100, 1300, 1500.
+New held-out seeds 2100 and 2300 (default class mix, 40 vehicles, five set-ups, never rendered
+before) were run once before any change: `python benchmarks/vehicles.py --seed S --vehicles 40
+--noise 1 --video-vehicles 40 --video-seed S --video-setups mast_low gantry side wide_distorted
+mast_high` (Table 1 from observations on the same scenes, with the naive 2-D baseline; Table 2
+from video, with the naive 2-D baseline on the pipeline's boxes). Found / light / heavy / MAE W H L
+m / naive 2-D from video light / heavy at its oracle threshold:
+  2100 mast_low        39/40 33/33 6/6 0.19 0.09 0.70   naive 66.7 / 100 %
+  2100 gantry          40/40 34/34 5/6 0.10 0.11 0.78   naive 79.4 / 100 %   (a bus light)
+  2100 side            39/40 33/33 6/6 0.18 0.08 0.28   naive 100 / 100 %
+  2100 wide_distorted  40/40 34/34 6/6 0.15 0.10 0.47   naive 84.8 / 100 %   (a car not fully in view)
+  2100 mast_high       40/40 34/34 6/6 0.12 0.08 0.32   naive 100 / 100 %
+  2300 mast_low        40/40 36/36 3/4 0.18 0.08 0.80   naive 75.0 / 100 %   (a truck light)
+  2300 gantry          40/40 36/36 4/4 0.10 0.11 0.58   naive 88.9 / 100 %
+  2300 side            40/40 35/36 3/4 0.22 0.09 0.34   naive 100 / 100 %    (a car with trailer heavy, a truck
+                                                                              light, 2 cars not fully in view)
+  2300 wide_distorted  40/40 35/36 4/4 0.17 0.10 0.47   naive 97.2 / 100 %   (a car with trailer heavy)
+  2300 mast_high       40/40 36/36 4/4 0.11 0.08 0.35   naive 100 / 100 %
+Totals: found 398/400 (99.5 %), light 346/348 (99.4 %), heavy 47/50 (94.0 %). From observations
+(exact outlines + 1 px noise, same scenes): the default rays 100 / 100 % on both seeds, the paper's
+ray 100 / 100 %, the naive 2-D oracle 39.4 / 100 % (2100) and 40.0 / 100 % (2300).
+Diagnosis (tuning seeds 1100/1300; a copy of last session's per-vehicle script: the matched track,
+every track voting for the vehicle, its runs of frames): of the 7 heavies called light, 4 are one
+case -- the volume fails while the height holds. 1100 truck 23 (2.43 x 2.94 x 9.57 m) on
+wide_distorted and mast_high (partly hidden by a nearer vehicle in a third and a quarter of its
+frames; tracks of 52 and 30 views) came out 1.94 x 3.09 x 7.32 and 1.95 x 3.28 x 6.84 m (44 and 44 m^3, light by 1 m^3); 1300
+truck 18 (2.53 x 3.90 x 10.67 m) on mast_low and gantry: the matched track starts on the union of
+the truck and another vehicle (29-31 frames matching no vehicle), and the truck's last 31-36
+frames go to a second track (heavy, fewer frames used): L 3.38 and 2.74 m, H 4.18 and 4.47 m.
+The other 3 are not the estimator's: 1100 mast_low articulated lorry 21 split over four tracks (the
+three on it heavy; the one scored, mostly over other vehicles, W 0.65 m), 1300 gantry bus 40 (two
+tracks mostly over other vehicles: H 0.96 m), 1300 wide_distorted truck 6 (the track follows the
+truck, then car 17: a car's answer). Change (filters/vehicle_dimensions.hpp, heavy_height 2.9 m):
+the "volume" rule also calls a vehicle heavy when H >= 2.9 m, the lowest rigid trucks' height (the
+tallest light vehicles ~2.8 m; the same sources as heavy_volume), a model-level rule, not a fit:
+H is the dimension a partial outline keeps. Offline over every tuning scene's matched estimates
+(light/heavy is applied to the estimate's W, H, L only, so it is exact to re-decide them; /tmp
+script), found / light / heavy:
+  heavy_height       0 (before)         2.75          2.8           2.85          2.9 (kept)    3.0
+  100+300+700        597 486/488 109/109  484/488 109  485/488 109   485/488 109   486/488 109   486/488 109
+  1100+1300          392 326/328 57/64    323/328 61   325/328 61    326/328 61    326/328 61    326/328 61
+  1500 (heavy-rich)  199 144/144 53/55    144/144 54   144/144 54    144/144 54    144/144 54    144/144 54
+(2.85: a side 700 van at H 2.87 m heavy; 2.9 and 3.0 alike on tuning; 2.9 kept as the regulation's
+lower truck height.) Fixed: the four trucks above and 1500's gantry truck 28 (W 0.42 H 5.21 L 12.29
+m, the split passage of vehicles9's log). Left on the tuning seeds: the three tracking failures
+above, 1500 mast_low truck 5 (a car's track wins its match: 1.80 x 1.66 x 3.95 m), and the light
+vehicles called heavy on side 700 (a van and a car, one blob with a neighbour all along) and 1100 (a
+car on side, a van on wide_distorted: 3.55 and 3.75 m wide, two vehicles' outlines).
+Held out, once, after the choice (the same scenes: each seed's five set-ups re-rendered and run
+through measure_vehicles again; 2300 by the new build itself, 2100 re-decided from its W, H, L,
+which is exact -- the rule reads nothing else, and the volume re-computed from W, H, L agreed with
+the pipeline's decision on all 1224 tuning estimates): found / light / heavy,
+  2100  before 198/200 168/168 29/30   after 198/200 168/168 30/30   (gantry's bus: H 4.62, L 1.57 m)
+  2300  before 200/200 178/180 18/20   after 200/200 178/180 20/20   (mast_low's truck: H 3.89, L 3.24 m;
+                                                                     side's truck: H 4.10, W 1.17 m)
+  both  found 398/400 (99.5 %), light 346/348 (99.4 %), heavy 47/50 (94.0 %) -> 50/50 (100 %)
+No light vehicle changed (the two wrong, cars with trailers on side and wide_distorted 2300, were
+heavy by volume before: 3.18 x 2.62 x 6.71 and 3.16 x 2.91 x 5.86 m, W off by 1.2-1.5 m: two
+vehicles' outlines). Against the naive 2-D baseline in the same runs (above): it ties at 100 / 100 %
+on side and mast_high (its threshold chosen on the very data), and trails on mast_low, gantry and
+wide_distorted lights (66.7-97.2 %). Tuning seeds, all six (1200 vehicles): found 1188, light
+956/960, heavy 219/228 (96.1 %) -> 224/228 (98.2 %). Still below the bar on the tuning seeds
+(heavy 98.2 % < 99 %: the tracking failures listed above) and in the per-set-up figures (found
+39/40 on two 2100 set-ups); 50 held-out heavies are too few to claim 99 % (one miss is 2 %).
 """
 
 import argparse

@@ -437,7 +437,7 @@ models);
 reference "map" | "mean" | "random" (x*) | "all" (the full acceptance ratio); n_particles,
 burn_in, thinning; proposal_scale and dynamic_sigma (metres); min_size (W, H, L); sigma_w,
 sigma_h, sigma_l (S of §3.1) and max_edge_px; light_heavy_rule "volume" (W H L >=
-heavy_volume m^3) | "class" (the MAP class's heavy flag); decision "auto" (last for rays, else
+heavy_volume m^3, or H >= heavy_height m when > 0) | "class" (the MAP class's heavy flag); decision "auto" (last for rays, else
 mean) | "mean" (over the frames used) | "last"; border_margin_px; seed.
 
 update(vehicle_id, silhouette, frame=None) takes an image polygon (N, 2) or box (x, y, w, h) and
@@ -586,7 +586,11 @@ void bind_pipeline(py::module_& m) {
           if (!out.empty()) apps::write_vehicles_csv(out, result.vehicles);
           if (!tracks.empty()) apps::write_mot(tracks, result.tracks);
         }
-        return py::make_tuple(estimates_list(result.vehicles), track_rows(result.tracks), result.frames);
+        py::dict counts;  // what the run held (HeldViews in src/apps/vehicles.cpp)
+        counts["frames"] = result.frames;
+        counts["views"] = result.views;
+        counts["peak_held_views"] = result.peak_held_views;
+        return py::make_tuple(estimates_list(result.vehicles), track_rows(result.tracks), counts);
       },
       py::arg("video"), py::arg("camera"), py::arg("models"), py::arg("config"), py::arg("params"),
       py::arg("render"), py::arg("out"), py::arg("tracks"), py::arg("progress"),

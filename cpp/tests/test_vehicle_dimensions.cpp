@@ -283,6 +283,26 @@ TEST(VehicleDimensionEstimator, ClassifiesRenderedVehiclesLightAndHeavy) {
   }
 }
 
+TEST(VehicleDimensionEstimator, HeavyByHeightWhenTheVolumeFallsShort) {
+  // A truck seen only in part: its outline, cut short, gives a 2.4 x 3.4 x 5 m cuboid (41 m^3,
+  // under heavy_volume's 45) -- rendered whole here as that cuboid. The "volume" rule calls it
+  // light on the volume alone (heavy_height 0) and heavy by its height (the default 2.9 m); a car
+  // stays light under both. Each answer against its own estimate's W H L, and the truth's.
+  for (double height : {0.0, 2.9}) {
+    VehicleEstimatorParams p;
+    p.heavy_height = height;
+    filters::VehicleDimensionEstimator est(mast_camera(), {}, p);
+    drive(est, 1, 4.3, {2.4, 3.4, 5.0}, 16.0, 40.0);
+    drive(est, 2, 0.9, {1.8, 1.5, 4.5}, 16.0, 40.0);
+    const auto tall = est.estimate(1), car = est.estimate(2);
+    ASSERT_TRUE(tall.valid && car.valid);
+    EXPECT_LT(tall.dimensions.prod(), p.heavy_volume) << tall.dimensions.transpose();
+    EXPECT_GT(tall.dimensions.y(), 3.0) << tall.dimensions.transpose();
+    EXPECT_EQ(tall.heavy, height > 0.0);
+    EXPECT_FALSE(car.heavy);
+  }
+}
+
 TEST(VehicleDimensionEstimator, SameSeedSameResultWhateverTheOrderOfVehicles) {
   VehicleEstimatorParams p;
   p.seed = 11;
@@ -299,6 +319,15 @@ TEST(VehicleDimensionEstimator, SameSeedSameResultWhateverTheOrderOfVehicles) {
   filters::VehicleDimensionEstimator c(mast_camera(), {}, p);
   drive(c, 1, 0.9, {1.8, 1.5, 4.5}, 16.0, 30.0);
   EXPECT_NE(a.posterior(1)->samples, c.posterior(1)->samples);
+  // forget() (the video pipeline, streaming) releases one vehicle and leaves the others' answers
+  // as they were: vehicle 2 done with and forgotten before vehicle 1 is estimated, as in b.
+  const auto before = a.estimate(2).dimensions;
+  a.forget(2);
+  EXPECT_THROW(a.estimate(2), InvalidArgument);
+  EXPECT_EQ(a.next_frame(2), 1);
+  EXPECT_EQ(a.estimates().size(), 1u);
+  EXPECT_EQ(a.estimate(1).dimensions, b.estimate(1).dimensions);
+  EXPECT_EQ(before, b.estimate(2).dimensions);
 }
 
 TEST(VehicleDimensionEstimator, FramesUsedAndVehiclesNeverFullyInView) {

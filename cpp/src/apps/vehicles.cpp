@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <climits>
+#include <limits>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -158,6 +159,8 @@ const core::ParameterTable<VehicleBlobParams>& VehicleBlobParams::table() {
                             .add("merge_min_share", &P::merge_min_share)
                             .add("foot_gate", &P::foot_gate)
                             .add("hidden_horizon", &P::hidden_horizon)
+                            .add("hidden_max_passage", &P::hidden_max_passage)
+                            .add("hold_views", &P::hold_views)
                             .add("lost_memory", &P::lost_memory)
                             .add("confirm_frames", &P::confirm_frames);
   return t;
@@ -176,6 +179,8 @@ void validate(const VehicleBlobParams& p) {
           "a finite number >= 0 (a share of the predicted box's height; 0: off)");
   require(p.hidden_horizon >= 0.0 && std::isfinite(p.hidden_horizon), "hidden_horizon", p.hidden_horizon,
           "a finite number >= 0 (a share of a track's passage; 0: off)");
+  require(p.hidden_max_passage >= 0.0 && std::isfinite(p.hidden_max_passage), "hidden_max_passage",
+          p.hidden_max_passage, "a finite number of seconds >= 0 (0: no limit)");
   require(p.lost_memory >= 0 && p.lost_memory <= 1000, "lost_memory", p.lost_memory, "in [0, 1000]");
   require(p.confirm_frames >= 1 && p.confirm_frames <= 1000, "confirm_frames", p.confirm_frames, "in [1, 1000]");
 }
@@ -477,8 +482,8 @@ std::vector<Assignment> associate(std::vector<BlobTrack>& tracks, const std::vec
   return out;
 }
 
-// A blob that continued or started a track, kept to the end of the video: the estimators get a
-// track's outlines only when every track's passage is known (hidden_views()).
+// A blob that continued or started a track, held until the estimators may have its outline: when
+// every passage that could hide in it is known (HeldViews).
 struct TrackView {
   long long frame = 0;
   bool joined = false;  // associate(): its pixels also cover a smaller track's predicted box
@@ -539,40 +544,38 @@ bool hidden_in(const Passage& other, const cv::Rect2d& box, long long k, const V
   return (box & *b).area() >= 0.5 * b->area();
 }
 
-// The (track id, frame) of every confirmed track's own view (not joined) whose blob holds another
-// confirmed vehicle then hidden (hidden_in()): an outline of two vehicles, no one cuboid's. Each
-// track's views are tested only against the passages whose hiding window overlaps its frames: all
-// of them would make the test O(views x vehicles), hours at the end of hours of road video.
-std::set<std::pair<int, long long>> hidden_views(const std::map<int, std::vector<TrackView>>& views,
-                                                 const std::vector<int>& confirmed, const VehicleBlobParams& p,
-                                                 const cv::Size& image, const models::Camera& camera) {
+// The (track id, frame) of every own view (not joined) of the `targets` whose blob holds another of
+// the `passages` then hidden (hidden_in()): an outline of two vehicles, no one cuboid's. Both are
+// confirmed tracks' complete passages (the targets among the passages). Each target's views are
+// tested only against the passages whose hiding window overlaps its frames: all of them would make
+// the test O(views x vehicles), hours at the end of hours of road video.
+std::set<std::pair<int, long long>> hidden_views(const std::vector<const Passage*>& targets,
+                                                 const std::vector<const Passage*>& passages,
+                                                 const VehicleBlobParams& p, const cv::Size& image,
+                                                 const models::Camera& camera) {
   std::set<std::pair<int, long long>> out;
   if (p.hidden_horizon <= 0.0) return out;
-  std::vector<Passage> passages;
   std::vector<std::pair<double, double>> windows;
-  for (int id : confirmed) {
-    passages.push_back(passage_of(id, views.at(id)));
-    windows.push_back(hiding_window(passages.back(), p));
-  }
+  for (const Passage* b : passages) windows.push_back(hiding_window(*b, p));
   std::vector<std::size_t> by_start(passages.size());
   std::iota(by_start.begin(), by_start.end(), std::size_t{0});
   std::sort(by_start.begin(), by_start.end(),
             [&](std::size_t i, std::size_t j) { return windows[i].first < windows[j].first; });
   std::vector<const Passage*> nearby;
-  for (const auto& a : passages) {
+  for (const Passage* a : targets) {
     core::poll_interrupt();
-    const auto first = static_cast<double>(a.views->front().frame);
-    const auto last = static_cast<double>(a.views->back().frame);
+    const auto first = static_cast<double>(a->views->front().frame);
+    const auto last = static_cast<double>(a->views->back().frame);
     nearby.clear();
     for (std::size_t i : by_start) {
       if (windows[i].first > last) break;
-      if (windows[i].second >= first && passages[i].id != a.id) nearby.push_back(&passages[i]);
+      if (windows[i].second >= first && passages[i]->id != a->id) nearby.push_back(passages[i]);
     }
-    for (const auto& v : *a.views) {
+    for (const auto& v : *a->views) {
       if (v.joined) continue;
       for (const Passage* b : nearby) {
         if (hidden_in(*b, cv::Rect2d(v.blob.box), v.frame, p, image, camera)) {
-          out.emplace(a.id, v.frame);
+          out.emplace(a->id, v.frame);
           break;
         }
       }
@@ -595,41 +598,172 @@ void update(filters::VehicleDimensionEstimator& estimator, int id, long long fra
   }
 }
 
-// The confirmed tracks as vehicles (by id): each one's own outlines go to `own`, those joined with
-// or holding another vehicle (associate(), hidden_views()) to `joined`, whose answer is used only
-// for a vehicle with no clean view; the rows of hidden views are dropped (as a merge's: no one
-// vehicle's box). first/last_frame and frames_seen count every view.
-void finish(VehiclePipelineResult& result, const std::map<int, std::vector<TrackView>>& views,
-            const VehicleBlobParams& p, const cv::Size& image, filters::VehicleDimensionEstimator& own,
-            filters::VehicleDimensionEstimator& joined) {
-  std::vector<int> confirmed;
-  for (const auto& [id, vs] : views) {
-    if (static_cast<int>(vs.size()) >= p.confirm_frames) confirmed.push_back(id);
+// Every track's views until the estimators get them (header: hidden_horizon, hidden_max_passage,
+// hold_views). A track's views are finalised -- each outline given to `own`, or to `joined` when
+// it was joined with or holds another vehicle (associate(), hidden_views()), its estimate taken
+// and its outlines released -- once every passage that could hide in them is known. Why that is
+// soon after the track ends: a view of track A at frame x is tested against the confirmed passages
+// B whose hiding window [f_B - h n_B, l_B + h n_B] holds x (hiding_window(); f, l the first and
+// last views, n = l - f + 1 frames, h = hidden_horizon), with B's road line and anchors from its
+// whole passage, and only passages of at most C frames hide (C = hidden_max_passage x the frame
+// rate). An ended B is known. A running B, at frame k, has f_B >= k + 1 - C if it may still be a
+// passage of at most C frames (its span so far is at most C), and a B yet to start f_B >= k + 1;
+// either reaches back at most h C frames before its start. So no unknown passage reaches below
+//   frontier_k = min(k + 1, the first frame of every running track of span <= C) - h C,
+// and an ended track whose last view is below frontier_k can be finalised against the ended
+// passages, exactly as at the end of the video (the same estimates: each vehicle's chain has its
+// own random stream; hold_views = true holds every view to the end, the same answer, for the
+// tests). An ended passage stays (without its outlines) while its window reaches the first frame
+// of a track not finalised, or k + 1. Held at any time: the outlines of the last (1 + h) C frames
+// or so, a bound set by C, not by the video's length. Without C (0) no passage's length is
+// bounded -- a vehicle may stop in view, a ghost of the background stay for minutes, and the
+// longest passage seen so far is no bound: on tests/test_vehicle_estimator.py's gantry stream a
+// 481-frame track followed passages of at most 107 frames -- so every view is held to the end.
+class HeldViews {
+ public:
+  HeldViews(const VehicleBlobParams& p, double fps, const cv::Size& image, filters::VehicleDimensionEstimator& own,
+            filters::VehicleDimensionEstimator& joined)
+      : p_(p), cap_(p.hidden_max_passage * fps), image_(image), own_(own), joined_(joined) {}
+
+  // A blob that continued or started track `id` at `frame`.
+  void add(int id, long long frame, bool joined, const Blob& blob) {
+    views_[id].push_back({frame, joined, blob});
+    running_.insert(id);
+    ++views_seen_;
+    peak_ = std::max(peak_, ++held_);
   }
-  const auto hidden = hidden_views(views, confirmed, p, image, own.camera());
-  for (int id : confirmed) {
-    core::poll_interrupt();
-    for (const auto& v : views.at(id)) {
-      update(v.joined || hidden.count({id, v.frame}) ? joined : own, id, v.frame, v.blob);
+
+  // After frame k, with `tracks` the running ones: finalises what no unknown passage can reach.
+  void flush(long long k, const std::vector<BlobTrack>& tracks, std::vector<filters::VehicleEstimate>& out) {
+    std::set<int> alive;
+    for (const auto& t : tracks) alive.insert(t.id);
+    end_tracks(alive);
+    if (p_.hold_views || cap_ <= 0.0) return;
+    double frontier = static_cast<double>(k + 1);
+    for (int id : running_) {
+      if (may_hide(views_.at(id))) frontier = std::min(frontier, static_cast<double>(views_.at(id).front().frame));
     }
-    filters::VehicleEstimate e;
-    if (own.next_frame(id) > 1) e = own.estimate(id);
-    if (!e.valid && joined.next_frame(id) > 1) e = joined.estimate(id);
-    e.vehicle_id = id;
-    e.first_frame = static_cast<int>(views.at(id).front().frame);
-    e.last_frame = static_cast<int>(views.at(id).back().frame);
-    e.frames_seen = static_cast<int>(views.at(id).size());
-    result.vehicles.push_back(e);
+    finalise(frontier - p_.hidden_horizon * cap_, out);
+    release_passages(k + 1);
   }
-  auto& rows = result.tracks;
-  rows.erase(std::remove_if(rows.begin(), rows.end(),
-                            [&](const TrackRow& r) {
-                              const int id = static_cast<int>(r.id);
-                              return static_cast<int>(views.at(id).size()) < p.confirm_frames ||
-                                     hidden.count({id, r.frame});
-                            }),
-             rows.end());
-}
+
+  // The end of the video: every track has ended. `out` is sorted by id.
+  void finish(std::vector<filters::VehicleEstimate>& out) {
+    end_tracks({});
+    finalise(std::numeric_limits<double>::infinity(), out);
+    std::sort(out.begin(), out.end(), [](const auto& x, const auto& y) { return x.vehicle_id < y.vehicle_id; });
+  }
+
+  // Whether a track row stays: a confirmed track's, not of a hidden view (as a merge's, no one
+  // vehicle's box).
+  bool keeps(const TrackRow& r) const {
+    const int id = static_cast<int>(r.id);
+    return !unconfirmed_.count(id) && !hidden_.count({id, r.frame});
+  }
+  std::size_t peak() const { return peak_; }
+  long long views_seen() const { return views_seen_; }
+
+ private:
+  // Whether a passage with these views may hide in another track's (span <= C; no C: any).
+  bool may_hide(const std::vector<TrackView>& vs) const {
+    return cap_ <= 0.0 || static_cast<double>(vs.back().frame - vs.front().frame + 1) <= cap_;
+  }
+
+  // The running tracks not in `alive` end: a confirmed one becomes a passage, the views of one
+  // matched in fewer than confirm_frames frames (a flicker) go.
+  void end_tracks(const std::set<int>& alive) {
+    for (auto it = running_.begin(); it != running_.end();) {
+      if (alive.count(*it)) {
+        ++it;
+        continue;
+      }
+      auto& vs = views_.at(*it);
+      if (static_cast<int>(vs.size()) >= p_.confirm_frames) {
+        ended_.emplace(*it, passage_of(*it, vs));
+      } else {
+        unconfirmed_.insert(*it);
+        held_ -= vs.size();
+        views_.erase(*it);
+      }
+      it = running_.erase(it);
+    }
+  }
+
+  // Finalises the ended tracks whose last view is below `frontier`, in order of id.
+  void finalise(double frontier, std::vector<filters::VehicleEstimate>& out) {
+    std::vector<const Passage*> targets, passages;
+    for (const auto& [id, passage] : ended_) {
+      if (may_hide(*passage.views)) passages.push_back(&passage);
+      if (!finalised_.count(id) && static_cast<double>(passage.views->back().frame) < frontier) {
+        targets.push_back(&passage);
+      }
+    }
+    if (targets.empty()) return;
+    const auto hidden = hidden_views(targets, passages, p_, image_, own_.camera());
+    for (const Passage* a : targets) {
+      core::poll_interrupt();
+      auto& vs = views_.at(a->id);
+      for (auto& v : vs) {
+        const bool is_hidden = hidden.count({a->id, v.frame}) > 0;
+        update(v.joined || is_hidden ? joined_ : own_, a->id, v.frame, v.blob);
+        if (is_hidden) hidden_.emplace(a->id, v.frame);
+        std::vector<cv::Point>().swap(v.blob.contour);  // the outline is the memory; the box stays
+      }
+      out.push_back(vehicle(a->id, vs));
+      own_.forget(a->id);
+      joined_.forget(a->id);
+      held_ -= vs.size();
+      finalised_.insert(a->id);
+    }
+  }
+
+  // The answer for a confirmed track: its own views' estimate, else its joined ones'.
+  // first/last_frame and frames_seen count every view.
+  filters::VehicleEstimate vehicle(int id, const std::vector<TrackView>& vs) const {
+    filters::VehicleEstimate e;
+    if (own_.next_frame(id) > 1) e = own_.estimate(id);
+    if (!e.valid && joined_.next_frame(id) > 1) e = joined_.estimate(id);
+    e.vehicle_id = id;
+    e.first_frame = static_cast<int>(vs.front().frame);
+    e.last_frame = static_cast<int>(vs.back().frame);
+    e.frames_seen = static_cast<int>(vs.size());
+    return e;
+  }
+
+  // Drops the finalised passages that hide nowhere any more: longer than C, or with a hiding
+  // window ending before every view still to finalise (the running and the ended unfinalised
+  // tracks', and frames from `next` on).
+  void release_passages(long long next) {
+    long long open = next;
+    for (const auto& [id, vs] : views_) {
+      if (!finalised_.count(id)) open = std::min(open, vs.front().frame);
+    }
+    for (auto it = finalised_.begin(); it != finalised_.end();) {
+      const Passage& b = ended_.at(*it);
+      if (may_hide(*b.views) && hiding_window(b, p_).second >= static_cast<double>(open)) {
+        ++it;
+        continue;
+      }
+      ended_.erase(*it);
+      views_.erase(*it);
+      it = finalised_.erase(it);
+    }
+  }
+
+  const VehicleBlobParams& p_;
+  double cap_;  // C, frames (0: none)
+  cv::Size image_;
+  filters::VehicleDimensionEstimator& own_;
+  filters::VehicleDimensionEstimator& joined_;
+  std::map<int, std::vector<TrackView>> views_;  // every track's not yet released
+  std::set<int> running_;                        // tracks with views still running
+  std::map<int, Passage> ended_;                 // confirmed ended tracks (their views in views_)
+  std::set<int> finalised_;                      // of ended_: estimated, outlines released
+  std::set<int> unconfirmed_;                    // ended in fewer than confirm_frames views
+  std::set<std::pair<int, long long>> hidden_;   // hidden views of finalised tracks (their rows go)
+  std::size_t held_ = 0, peak_ = 0;              // views with their outlines
+  long long views_seen_ = 0;
+};
 
 models::Camera camera_for(const models::Camera& camera, int width, int height) {
   models::CameraCalibration c = camera.calibration();
@@ -682,7 +816,8 @@ VehiclePipelineResult measure_vehicles(const std::string& video, const models::C
                              : cv::Mat();
   VehiclePipelineResult result;
   std::vector<BlobTrack> tracks;
-  std::map<int, std::vector<TrackView>> views;
+  HeldViews views(blob, source.fps() > 0 ? source.fps() : 25.0, cv::Size(source.width(), source.height()), estimator,
+                  joined_views);
   int next_id = 1;
   cv::Mat frame, y, mask, labels;
   while (source.read(frame)) {
@@ -701,7 +836,7 @@ VehiclePipelineResult measure_vehicles(const std::string& video, const models::C
       result.tracks.push_back({k, static_cast<std::uint64_t>(id), static_cast<float>(r.x - 0.5),
                                static_cast<float>(r.y - 0.5), static_cast<float>(r.width),
                                static_cast<float>(r.height), 1.0});
-      views[id].push_back({k, matched[b].joined, blobs[b]});
+      views.add(id, k, matched[b].joined, blobs[b]);
       if (live && !matched[b].joined) update(*live, id, k, blobs[b]);
     }
     if (writer) {
@@ -713,14 +848,24 @@ VehiclePipelineResult measure_vehicles(const std::string& video, const models::C
       writer->write(frame);
     }
     tracks.erase(std::remove_if(tracks.begin(), tracks.end(),
-                                [&](const BlobTrack& t) { return k - t.last_frame > blob.lost_memory; }),
+                                [&](const BlobTrack& t) {
+                                  const bool ended = k - t.last_frame > blob.lost_memory;
+                                  if (ended && live) live->forget(t.id);
+                                  return ended;
+                                }),
                  tracks.end());
+    views.flush(k, tracks, result.vehicles);
     if (progress) progress(k, source.expected_frame_count());
   }
   if (result.frames == 0) throw IoError("video '" + video + "' has no frames");
   // Confirmed tracks only, their rows too; a track whose blobs were always merged with another
   // vehicle's has no views and is not reported.
-  finish(result, views, blob, cv::Size(source.width(), source.height()), estimator, joined_views);
+  views.finish(result.vehicles);
+  auto& rows = result.tracks;
+  rows.erase(std::remove_if(rows.begin(), rows.end(), [&](const TrackRow& r) { return !views.keeps(r); }),
+             rows.end());
+  result.views = views.views_seen();
+  result.peak_held_views = static_cast<long long>(views.peak());
   if (writer) writer->commit();
   return result;
 }

@@ -243,6 +243,7 @@ const core::ParameterTable<VehicleEstimatorParams>& VehicleEstimatorParams::tabl
                             .include(&P::likelihood)
                             .add_choice("light_heavy_rule", &P::light_heavy_rule, light_heavy_rule_names())
                             .add("heavy_volume", &P::heavy_volume)
+                            .add("heavy_height", &P::heavy_height)
                             .add_choice("decision", &P::decision, vehicle_decision_names())
                             .add("border_margin_px", &P::border_margin_px)
                             .add("max_length_resolution", &P::max_length_resolution)
@@ -265,6 +266,8 @@ void validate(const VehicleEstimatorParams& p) {
   models::validate(p.likelihood);
   require(p.heavy_volume > 0.0 && std::isfinite(p.heavy_volume), "heavy_volume", p.heavy_volume,
           "a positive finite number (m^3)");
+  require(p.heavy_height >= 0.0 && std::isfinite(p.heavy_height), "heavy_height", p.heavy_height,
+          "a finite number >= 0 (metres; 0: off)");
   require(p.border_margin_px >= 0.0 && std::isfinite(p.border_margin_px), "border_margin_px", p.border_margin_px,
           "a finite number >= 0 (pixels)");
   require(p.max_length_resolution >= 0.0 && std::isfinite(p.max_length_resolution), "max_length_resolution",
@@ -533,8 +536,10 @@ VehicleEstimate VehicleDimensionEstimator::estimate(int vehicle_id) const {
   e.class_index = static_cast<int>(best);
   const auto& model = prior_.params().models[static_cast<std::size_t>(best)];
   e.class_name = model.name;
+  // "volume": W H L >= heavy_volume, or H >= heavy_height (header: light/heavy).
+  const bool tall = params_.heavy_height > 0.0 && e.dimensions.y() >= params_.heavy_height;
   e.heavy = params_.light_heavy_rule == LightHeavyRule::Class ? model.heavy
-                                                               : e.dimensions.prod() >= params_.heavy_volume;
+                                                               : e.dimensions.prod() >= params_.heavy_volume || tall;
   return e;
 }
 

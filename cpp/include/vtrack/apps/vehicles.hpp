@@ -103,8 +103,15 @@ void write_vehicles_csv(const std::string& path, const std::vector<filters::Vehi
 // hidden view goes to the second estimator, as a joined one, and has no track row (as a merge: no
 // one vehicle's box). A ratio of the vehicles' own passages, the same at any frame rate. 0 = off
 // (every view as the tracker saw it; each vehicle's estimate is then what it was when the
-// estimator was fed frame by frame). The cost: every view is kept (outline included) until the end
-// of the video.
+// estimator was fed frame by frame). Only a passage of at most hidden_max_passage seconds hides: a
+// vehicle in view for minutes has stopped, or is a ghost of the background, and its road line (a
+// constant velocity) says nothing of where it was before or after. Memory: a track's views
+// (outlines included) are held only until every passage that could hide in them is known, soon
+// after the track ends (src/apps/vehicles.cpp, HeldViews, gives the argument): the outlines of the
+// last (1 + hidden_horizon) x hidden_max_passage seconds or so, whatever the video's length. With
+// hidden_max_passage 0 (no limit) no bound exists and every view is held to the end of the video
+// (~1 KB a view: ~300 MB per hour of busy road at 25 frames/s), as hold_views = true does with
+// the limit (the same answer as streaming; for tests).
 // Vehicles side by side at the same speed for their whole passage stay one blob: one track, the
 // estimator fed a two-vehicle outline (a limitation; benchmarks/vehicles.py counts it). A track
 // matched in fewer than confirm_frames frames is not reported (a flicker of the background).
@@ -122,6 +129,8 @@ struct VehicleBlobParams {
   double merge_min_share = 0.2;       // a merge member's predicted box area / the blob box's (above)
   double foot_gate = 0.5;             // foot off the predicted one / predicted height (above); 0 = off
   double hidden_horizon = 1.0;        // outlines holding a hidden vehicle, x its passage (above); 0 = off
+  double hidden_max_passage = 120.0;  // seconds: longer passages hide nowhere (above); 0 = no limit
+  bool hold_views = false;            // true: every view held to the end of the video (above)
   int lost_memory = 5;                // frames a track may go unmatched (it coasts through merges)
   int confirm_frames = 3;             // matched frames for a track to be a vehicle
 
@@ -152,6 +161,8 @@ struct VehiclePipelineResult {
   std::vector<filters::VehicleEstimate> vehicles;  // confirmed tracks, by id (ids from 1, in order of appearance)
   std::vector<TrackRow> tracks;                    // every vehicle's image box per frame (MOTChallenge rows)
   long long frames = 0;
+  long long views = 0;            // blobs given to tracks (the views the estimators may get)
+  long long peak_held_views = 0;  // the most views held at once with their outlines (hidden_max_passage)
 };
 
 // Runs the pipeline over a video file or image folder. The camera's image size, when given, must
