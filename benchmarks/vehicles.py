@@ -462,18 +462,19 @@ frames go to a second track (heavy, fewer frames used): L 3.38 and 2.74 m, H 4.1
 The other 3 are not the estimator's: 1100 mast_low articulated lorry 21 split over four tracks (the
 three on it heavy; the one scored, mostly over other vehicles, W 0.65 m), 1300 gantry bus 40 (two
 tracks mostly over other vehicles: H 0.96 m), 1300 wide_distorted truck 6 (the track follows the
-truck, then car 17: a car's answer). Change (filters/vehicle_dimensions.hpp, heavy_height 2.9 m):
-the "volume" rule also calls a vehicle heavy when H >= 2.9 m, the lowest rigid trucks' height (the
-tallest light vehicles ~2.8 m; the same sources as heavy_volume), a model-level rule, not a fit:
+truck, then car 17: a car's answer). Change (filters/vehicle_dimensions.hpp, heavy_height 3.0 m):
+the "volume" rule also calls a vehicle heavy when H >= 3.0 m, about the rigid trucks' height (the
+tallest light vehicles ~2.8-2.9 m; the same sources as heavy_volume), a model-level rule, not a fit:
 H is the dimension a partial outline keeps. Offline over every tuning scene's matched estimates
 (light/heavy is applied to the estimate's W, H, L only, so it is exact to re-decide them; /tmp
 script), found / light / heavy:
-  heavy_height       0 (before)         2.75          2.8           2.85          2.9 (kept)    3.0
+  heavy_height       0 (before)         2.75          2.8           2.85          2.9           3.0 (kept)
   100+300+700        597 486/488 109/109  484/488 109  485/488 109   485/488 109   486/488 109   486/488 109
   1100+1300          392 326/328 57/64    323/328 61   325/328 61    326/328 61    326/328 61    326/328 61
   1500 (heavy-rich)  199 144/144 53/55    144/144 54   144/144 54    144/144 54    144/144 54    144/144 54
-(2.85: a side 700 van at H 2.87 m heavy; 2.9 and 3.0 alike on tuning; 2.9 kept as the regulation's
-lower truck height.) Fixed: the four trucks above and 1500's gantry truck 28 (W 0.42 H 5.21 L 12.29
+(2.85: a side 700 van at H 2.87 m heavy; 2.9 and 3.0 alike on tuning and, re-decided offline, on
+held-out 2100 / 2300; 3.0 kept for its margin: the vans' estimated heights over all eight seeds
+reach 2.86 m at their 99th percentile, and real high-roof vans ~2.9 m.) Fixed: the four trucks above and 1500's gantry truck 28 (W 0.42 H 5.21 L 12.29
 m, the split passage of vehicles9's log). Left on the tuning seeds: the three tracking failures
 above, 1500 mast_low truck 5 (a car's track wins its match: 1.80 x 1.66 x 3.95 m), and the light
 vehicles called heavy on side 700 (a van and a car, one blob with a neighbour all along) and 1100 (a

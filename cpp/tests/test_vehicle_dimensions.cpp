@@ -286,9 +286,9 @@ TEST(VehicleDimensionEstimator, ClassifiesRenderedVehiclesLightAndHeavy) {
 TEST(VehicleDimensionEstimator, HeavyByHeightWhenTheVolumeFallsShort) {
   // A truck seen only in part: its outline, cut short, gives a 2.4 x 3.4 x 5 m cuboid (41 m^3,
   // under heavy_volume's 45) -- rendered whole here as that cuboid. The "volume" rule calls it
-  // light on the volume alone (heavy_height 0) and heavy by its height (the default 2.9 m); a car
+  // light on the volume alone (heavy_height 0) and heavy by its height (the default 3.0 m); a car
   // stays light under both. Each answer against its own estimate's W H L, and the truth's.
-  for (double height : {0.0, 2.9}) {
+  for (double height : {0.0, VehicleEstimatorParams{}.heavy_height}) {
     VehicleEstimatorParams p;
     p.heavy_height = height;
     filters::VehicleDimensionEstimator est(mast_camera(), {}, p);

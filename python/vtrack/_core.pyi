@@ -768,7 +768,7 @@ class VehicleDimensionEstimator:
         max_edge_px: float = 4.0,
         light_heavy_rule: Literal["volume", "class"] = "volume",
         heavy_volume: float = 45.0,
-        heavy_height: float = 2.9,
+        heavy_height: float = 3.0,
         decision: Literal["auto", "mean", "last"] = "auto",
         border_margin_px: float = 1.0,
         max_length_resolution: float = 0.0,
