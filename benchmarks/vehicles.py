@@ -495,6 +495,21 @@ wide_distorted lights (66.7-97.2 %). Tuning seeds, all six (1200 vehicles): foun
 956/960, heavy 219/228 (96.1 %) -> 224/228 (98.2 %). Still below the bar on the tuning seeds
 (heavy 98.2 % < 99 %: the tracking failures listed above) and in the per-set-up figures (found
 39/40 on two 2100 set-ups); 50 held-out heavies are too few to claim 99 % (one miss is 2 %).
+heavy_height then 2.9 -> 3.0 m (the same answers on all eight seeds re-decided offline; the vans'
+estimated heights reach 2.86 m at their 99th percentile). Seed 1900 (held out last session, scored
+only), re-run from video with that build (the matching above, per vehicle): found 196/200, light
+155/155, heavy 40/40 (39/40 without heavy_height: a side truck at 2.07 x 3.30 x 6.61 m).
+
+New camera set-ups, never used before (held out; registered in a script as
+vtrack.synthetic_road.CAMERA_SETUPS entries, the rest of this benchmark unchanged, `--video-only
+--video-vehicles 40 --video-seed 2500`): "pole_hd" CameraSetup(height=7.0, pitch=14.0, yaw=20.0,
+lateral=-4.0, focal=1200.0, image_width=1280, image_height=720) found 39/40, light 31/31, heavy
+8/8, MAE W H L 0.19 0.07 0.87 m, naive 2-D 80.6 / 100 %; "far_side_right" CameraSetup(height=11.0,
+pitch=18.0, yaw=-24.0, lateral=20.0) (a camera beyond the road's right edge looking across all
+four lanes) found 37/40 (92.5 %), light 28/28, heavy 9/9, MAE 0.26 0.18 0.78 m, naive 92.9 / 100 %.
+The three not found are cars in the far lanes, ~25 x 20 px for their whole passage and behind the
+near lanes' traffic: their tracks' best IoU with them 0.24-0.39 (with the vehicles in front), or
+matched in 3 frames. Below the found bar (98 %) on this set-up: left open.
 """
 
 import argparse
