@@ -794,14 +794,14 @@ VehiclePipelineResult measure_vehicles(const std::string& video, const models::C
   VideoSource source(video);
   filters::VehicleDimensionEstimator estimator(camera_for(camera, source.width(), source.height()), std::move(models),
                                                params.estimator);
-  // Outlines of more than one vehicle (finish()) go to a second estimator, used only for a vehicle
+  // Outlines of more than one vehicle (HeldViews) go to a second estimator, used only for a vehicle
   // with no clean view: a large vehicle with distant ones in its outline all along.
   filters::VehicleDimensionEstimator joined_views(estimator.camera(), estimator.prior().params().models,
                                                   params.estimator);
   image::KdeBackground background(params.background);
   std::unique_ptr<AtomicVideoWriter> writer;
   // The rendered video's running class: the clean outlines as they come (the estimators proper
-  // see the outlines at the end, finish()).
+  // see them once HeldViews finalises their tracks).
   std::unique_ptr<filters::VehicleDimensionEstimator> live;
   if (!render.empty()) {
     writer = std::make_unique<AtomicVideoWriter>(render, source.fps() > 0 ? source.fps() : 25.0,

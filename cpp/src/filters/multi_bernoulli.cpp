@@ -310,9 +310,8 @@ void MultiBernoulliFilter::manage_tracks(const cv::Mat& y, const cv::Mat& frame)
     TrackEstimate t;
     t.id = c.label;
     const double scale = row_scale(m[1] + m[3]);
-    if (!set_calibrated_person_box(params_.box, {m[0], m[1], m[2], m[3]},
-                                   {size_.width * scale, size_.height * scale}, {width_, height_},
-                                   t)) {
+    if (!set_calibrated_box(params_.box, {m[0], m[1], m[2], m[3]},
+                            {size_.width * scale, size_.height * scale}, {width_, height_}, t)) {
       continue;
     }
     t.score = c.existence;

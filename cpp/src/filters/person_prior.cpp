@@ -55,22 +55,6 @@ void validate(const BoxCalibrationParams& p) {
   require(std::isfinite(p.box_offset_y), "box_offset_y", p.box_offset_y, "finite");
 }
 
-bool set_calibrated_box(const BoxCalibrationParams& c, double cx, double cy, double w, double h,
-                        int image_width, int image_height, TrackEstimate& t) {
-  t.w = w * c.box_scale_w;
-  t.h = h * c.box_scale_h;
-  t.x = cx + c.box_offset_x * w - 0.5 * t.w;
-  t.y = cy + c.box_offset_y * h - 0.5 * t.h;
-  if (!c.box_clip) return true;
-  const double x1 = std::min(t.x + t.w, double(image_width));
-  const double y1 = std::min(t.y + t.h, double(image_height));
-  t.x = std::max(t.x, 0.0);
-  t.y = std::max(t.y, 0.0);
-  t.w = std::max(x1 - t.x, 0.0);
-  t.h = std::max(y1 - t.y, 0.0);
-  return t.w > 0.0 && t.h > 0.0;
-}
-
 namespace {
 
 // One axis of whole_person_box: the interval [start, start + length) within a pixel of 0 or of
@@ -94,11 +78,22 @@ cv::Rect2d whole_person_box(const cv::Rect2d& box, const cv::Size2d& person, con
   return whole;
 }
 
-bool set_calibrated_person_box(const BoxCalibrationParams& calibration, const cv::Rect2d& box,
-                               const cv::Size2d& person, const cv::Size& image, TrackEstimate& t) {
+bool set_calibrated_box(const BoxCalibrationParams& c, const cv::Rect2d& box, const cv::Size2d& person,
+                        const cv::Size& image, TrackEstimate& t) {
   const cv::Rect2d whole = whole_person_box(box, person, image);
-  return set_calibrated_box(calibration, whole.x + 0.5 * whole.width, whole.y + 0.5 * whole.height,
-                            whole.width, whole.height, image.width, image.height, t);
+  t.w = whole.width * c.box_scale_w;
+  t.h = whole.height * c.box_scale_h;
+  const double cx = whole.x + 0.5 * whole.width, cy = whole.y + 0.5 * whole.height;
+  t.x = cx + c.box_offset_x * whole.width - 0.5 * t.w;
+  t.y = cy + c.box_offset_y * whole.height - 0.5 * t.h;
+  if (!c.box_clip) return true;
+  const double x1 = std::min(t.x + t.w, double(image.width));
+  const double y1 = std::min(t.y + t.h, double(image.height));
+  t.x = std::max(t.x, 0.0);
+  t.y = std::max(t.y, 0.0);
+  t.w = std::max(x1 - t.x, 0.0);
+  t.h = std::max(y1 - t.y, 0.0);
+  return t.w > 0.0 && t.h > 0.0;
 }
 
 PersonHeight::PersonHeight(const PersonSizeParams& params, int image_height)

@@ -697,8 +697,8 @@ void ReclusteringSir::report(const cv::Mat& y, const cv::Mat& frame) {
     TrackEstimate t;
     t.id = o.label;
     const Eigen::Vector2f person = 2.0f * half_size(o.estimate[1]);
-    if (!set_calibrated_person_box(params_.box, {boxes[k][0], boxes[k][1], boxes[k][2], boxes[k][3]},
-                                   {person[0], person[1]}, {width_, height_}, t)) {
+    if (!set_calibrated_box(params_.box, {boxes[k][0], boxes[k][1], boxes[k][2], boxes[k][3]},
+                            {person[0], person[1]}, {width_, height_}, t)) {
       continue;
     }
     t.score = o.score;

@@ -63,12 +63,6 @@ struct BoxCalibrationParams {
 
 void validate(const BoxCalibrationParams& params);
 
-// Sets t's box (x, y, w, h) from the tracker's box centred at (cx, cy) of size w x h, clipped
-// to the image_width x image_height image with box_clip. Returns false when nothing of the box
-// is left in the image (then the track is not reported).
-bool set_calibrated_box(const BoxCalibrationParams& calibration, double cx, double cy, double w,
-                        double h, int image_width, int image_height, TrackEstimate& t);
-
 // The box of the whole person behind a tracker's box cut by the image border: a side within a
 // pixel of the border is moved out until the box is at least `person` wide (left, right) or
 // tall (top, bottom), the opposite side kept. A box away from the border, or already as large,
@@ -79,9 +73,11 @@ bool set_calibrated_box(const BoxCalibrationParams& calibration, double cx, doub
 // the annotation's width where the match failed).
 cv::Rect2d whole_person_box(const cv::Rect2d& box, const cv::Size2d& person, const cv::Size& image);
 
-// set_calibrated_box of whole_person_box(box, person, image): what both foreground trackers report.
-bool set_calibrated_person_box(const BoxCalibrationParams& calibration, const cv::Rect2d& box,
-                               const cv::Size2d& person, const cv::Size& image, TrackEstimate& t);
+// What both foreground trackers report: sets t's box (x, y, w, h) to the calibration of
+// whole_person_box(box, person, image), clipped to the image with box_clip. Returns false when
+// nothing of the box is left in the image (then the track is not reported).
+bool set_calibrated_box(const BoxCalibrationParams& calibration, const cv::Rect2d& box,
+                        const cv::Size2d& person, const cv::Size& image, TrackEstimate& t);
 
 // The person height in force: height_mean when given, else size_initial x the image height
 // until the foreground has shown enough evidence, then the learnt height.
