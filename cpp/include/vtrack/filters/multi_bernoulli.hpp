@@ -126,11 +126,9 @@ struct MultiBernoulliParams {
   // Particle counts of a component after resampling: clamp(ceil(r L_max), L_min, L_max). The
   // paper gives no values. L_max is the approximation's accuracy: a confirmed target's density
   // (four box coordinates, eq. 20's likelihood sharp at the silhouette's edges) holds L_max
-  // particles, and a box costs O(1) on integral images, so 1600 costs ~1 ms per frame more than
-  // 400 at 768 x 576. On PETS09-S2L1 MOTA rises with it and the spread over tracker seeds
-  // shrinks (400 -> 1600: 16-seed MOTA 0.608 -> 0.618, also on the other resolutions and crops);
-  // 3200 gives little more. L_min stays 50: it keeps new and fading components (r small) cheap,
-  // and 200 cost IDF1 on the zoomed video. benchmarks/pets09_identity.py has the table.
+  // particles, and a box costs O(1) on integral images, so a large L_max is cheap. L_min keeps
+  // new and fading components (r small) cheap. The values measured, on every resolution and
+  // crop, are in benchmarks/pets09_identity.py.
   int min_particles = 50;    // L_min
   int max_particles = 1600;  // L_max
   core::ResamplingScheme resampling = core::ResamplingScheme::Systematic;

@@ -94,10 +94,8 @@
 //     a heavy partly hidden by a nearer vehicle, or followed by a track over only part of its
 //     passage, comes out short or narrow (a 9.6 m truck as 1.9 x 3.1 x 7.3 m = 44 m^3, 10.7 m
 //     trucks as L 2.7-3.4 m), while its height, read from the roof's far corner in a near view,
-//     holds (benchmarks/vehicles.py: H errs by 0.1 m on average, L by 0.3-0.8 m). The midpoint
-//     2.85 m called a van heavy on a tuning scene (H 2.87 m); 2.9 and 3.0 measured alike on every
-//     tuning and held-out seed, and 3.0 keeps a margin over the vans' estimated heights (99th
-//     percentile 2.86 m over those seeds) and over real high-roof vans. 0 = off.
+//     holds. 3.0 m keeps a margin over the vans' estimated heights and over real high-roof vans;
+//     the values measured are in benchmarks/vehicles.py. 0 = off.
 #include <array>
 #include <cstdint>
 #include <limits>
