@@ -140,6 +140,8 @@ def test_frames_used_never_fully_in_view_and_the_parameters(camera):
             vtrack.vehicles.measure_vehicles("no-such-video.mkv", camera, hidden_horizon=bad)
         with pytest.raises(ValueError, match="hidden_max_passage"):
             vtrack.vehicles.measure_vehicles("no-such-video.mkv", camera, hidden_max_passage=bad)
+        with pytest.raises(ValueError, match="min_travel"):
+            vtrack.vehicles.measure_vehicles("no-such-video.mkv", camera, min_travel=bad)
     light = [m for m in vtrack.vehicles.table1_vehicle_models() if not m["heavy"]]
     only_light = vtrack.vehicles.VehicleDimensionEstimator(camera, models=light, light_heavy_rule="class")
     only_light.update(1, np.array([400.0, 300.0, 60.0, 50.0]))
@@ -263,6 +265,36 @@ def test_a_track_keeps_the_vehicle_whose_foot_it_follows_when_a_blob_parts(tmp_p
     assert len(before) == 1 and after_a == before and len(after_b) == 1 and not after_b & before
     before, after_a, after_b = tracks(foot_gate=0.0)
     assert before < after_b and not after_a & before
+
+
+def test_a_blob_that_never_moves_is_a_ghost_not_a_vehicle(tmp_path):
+    """A box appears at frame 11 and stays where it is to the end (a ghost of the background: road
+    uncovered where something stood while the background was learnt, or a change of light), beside
+    a vehicle driving down the image. The ghost's track covers no distance along the road: with the
+    default min_travel (1 m) it is not reported and has no rows; with min_travel 0 it is a second
+    vehicle. The moving one is reported either way."""
+    import cv2
+    from vtrack.synthetic_road import CameraSetup
+    scene = make_road_scene(CameraSetup(**SMALL_MAST), n_vehicles=1, seed=0)
+    camera = tmp_path / "camera.json"
+    camera.write_text(json.dumps(scene.camera_file()))
+    (tmp_path / "frames").mkdir()
+    for k in range(60):
+        img = np.full((180, 320, 3), 110, np.uint8)
+        if k >= 1:
+            cv2.rectangle(img, (150, 41 + k), (169, 80 + k), (40, 40, 200), -1)  # moving, 1 px a frame
+        if k >= 10:
+            cv2.rectangle(img, (40, 100), (79, 129), (60, 160, 60), -1)  # still
+        cv2.imwrite(str(tmp_path / "frames" / f"{k:04d}.png"), img)
+
+    def reported(**params):
+        vehicles, rows = vtrack.vehicles.measure_vehicles(tmp_path / "frames", camera, return_tracks=True, **params)
+        return {e["vehicle_id"] for e in vehicles}, {int(r[1]): r[2] for r in rows}
+
+    ids, row_x = reported()
+    assert len(ids) == 1 and set(row_x) == ids and list(row_x.values()) == [149.5]  # the moving box's column
+    ids, row_x = reported(min_travel=0.0)
+    assert len(ids) == 2 and sorted(row_x.values()) == [39.5, 149.5]
 
 
 def test_outlines_of_a_vehicle_found_later_are_not_the_track_s_own(tmp_path):

@@ -162,7 +162,8 @@ const core::ParameterTable<VehicleBlobParams>& VehicleBlobParams::table() {
                             .add("hidden_max_passage", &P::hidden_max_passage)
                             .add("hold_views", &P::hold_views)
                             .add("lost_memory", &P::lost_memory)
-                            .add("confirm_frames", &P::confirm_frames);
+                            .add("confirm_frames", &P::confirm_frames)
+                            .add("min_travel", &P::min_travel);
   return t;
 }
 
@@ -182,6 +183,8 @@ void validate(const VehicleBlobParams& p) {
   require(p.hidden_max_passage >= 0.0 && std::isfinite(p.hidden_max_passage), "hidden_max_passage",
           p.hidden_max_passage, "a finite number of seconds >= 0 (0: no limit)");
   require(p.lost_memory >= 0 && p.lost_memory <= 1000, "lost_memory", p.lost_memory, "in [0, 1000]");
+  require(p.min_travel >= 0.0 && std::isfinite(p.min_travel), "min_travel", p.min_travel,
+          "a finite number of metres >= 0 (0: off)");
   require(p.confirm_frames >= 1 && p.confirm_frames <= 1000, "confirm_frames", p.confirm_frames, "in [1, 1000]");
 }
 
@@ -664,6 +667,20 @@ class HeldViews {
   long long views_seen() const { return views_seen_; }
 
  private:
+  // Whether a track's views are a ghost of the background (header: min_travel): ground points in
+  // two or more of them, all within min_travel metres of one another along the road.
+  bool ghost(const std::vector<TrackView>& vs) const {
+    const Eigen::Vector2d along = own_.camera().road_axis().head<2>();
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    int grounded = 0;
+    for (const auto& v : vs) {
+      if (!v.blob.has_ground) continue;
+      const double s = v.blob.ground.dot(along);
+      lo = std::min(lo, s), hi = std::max(hi, s), ++grounded;
+    }
+    return grounded >= 2 && hi - lo < p_.min_travel;
+  }
+
   // Whether a passage with these views may hide in another track's (span <= C; no C: any).
   bool may_hide(const std::vector<TrackView>& vs) const {
     return cap_ <= 0.0 || static_cast<double>(vs.back().frame - vs.front().frame + 1) <= cap_;
@@ -678,7 +695,7 @@ class HeldViews {
         continue;
       }
       auto& vs = views_.at(*it);
-      if (static_cast<int>(vs.size()) >= p_.confirm_frames) {
+      if (static_cast<int>(vs.size()) >= p_.confirm_frames && !ghost(vs)) {
         ended_.emplace(*it, passage_of(*it, vs));
       } else {
         unconfirmed_.insert(*it);

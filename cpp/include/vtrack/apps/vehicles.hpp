@@ -115,6 +115,11 @@ void write_vehicles_csv(const std::string& path, const std::vector<filters::Vehi
 // Vehicles side by side at the same speed for their whole passage stay one blob: one track, the
 // estimator fed a two-vehicle outline (a limitation; benchmarks/vehicles.py counts it). A track
 // matched in fewer than confirm_frames frames is not reported (a flicker of the background).
+// Nor is a track whose ground points lie within min_travel metres of one another along the road:
+// a ghost of the background (road uncovered where something stood while the background was
+// learnt, a patch of changed light). A vehicle enters the view moving, so even one that stops in
+// view has travelled metres. In metres on the road, so the same at any resolution; a track with
+// fewer than two ground points (only at the image border) is kept.
 //
 // Pixel sizes follow the camera: the closing's side and the smallest blob are given at the
 // reference focal length of 900 px (a 960x540 road camera) and scale with the camera's focal
@@ -133,6 +138,7 @@ struct VehicleBlobParams {
   bool hold_views = false;            // true: every view held to the end of the video (above)
   int lost_memory = 5;                // frames a track may go unmatched (it coasts through merges)
   int confirm_frames = 3;             // matched frames for a track to be a vehicle
+  double min_travel = 1.0;            // metres along the road a vehicle's track covers (above); 0 = off
 
   static const core::ParameterTable<VehicleBlobParams>& table();
 };
