@@ -140,8 +140,9 @@ def test_frames_used_never_fully_in_view_and_the_parameters(camera):
             vtrack.vehicles.measure_vehicles("no-such-video.mkv", camera, hidden_horizon=bad)
         with pytest.raises(ValueError, match="hidden_max_passage"):
             vtrack.vehicles.measure_vehicles("no-such-video.mkv", camera, hidden_max_passage=bad)
-        with pytest.raises(ValueError, match="min_travel"):
-            vtrack.vehicles.measure_vehicles("no-such-video.mkv", camera, min_travel=bad)
+        for name in ("lane_split_gap", "lane_split_hold", "min_travel"):
+            with pytest.raises(ValueError, match=name):
+                vtrack.vehicles.measure_vehicles("no-such-video.mkv", camera, **{name: bad})
     light = [m for m in vtrack.vehicles.table1_vehicle_models() if not m["heavy"]]
     only_light = vtrack.vehicles.VehicleDimensionEstimator(camera, models=light, light_heavy_rule="class")
     only_light.update(1, np.array([400.0, 300.0, 60.0, 50.0]))
@@ -223,11 +224,16 @@ def test_tracks_keep_their_vehicle_through_long_merges(tmp_path):
     assert_each_vehicle_once_and_right(scene, paths, vehicles, rows)
 
 
+STACKED = dict(lane_split_gap=0.0)  # stacked_pair_frames(): B is wider than a vehicle
+
+
 def stacked_pair_frames(folder, n_frames, split):
     """Two painted boxes stacked in the image as one blob (a near vehicle A, 20 x 40 px, below a
     wider far one B, 40 x 30 px, both moving down 1 px per frame from frame 1), until A comes apart
     8 px lower at frame `split`. Writes the frames to `folder` and the small mast's camera beside
-    it; returns the camera file."""
+    it; returns the camera file. B, 40 px at ~45 m, is 5.5 m wide: no vehicle is, and the lane cut
+    takes the columns of it right of A for a vehicle in the next lane (their lowest pixels lie
+    2.7 m across the road from A's), so the tests below turn it off (STACKED)."""
     import cv2
     from vtrack.synthetic_road import CameraSetup
     scene = make_road_scene(CameraSetup(**SMALL_MAST), n_vehicles=1, seed=0)
@@ -254,7 +260,7 @@ def test_a_track_keeps_the_vehicle_whose_foot_it_follows_when_a_blob_parts(tmp_p
     camera = stacked_pair_frames(tmp_path / "frames", 45, split)
 
     def tracks(**params):
-        _, rows = vtrack.vehicles.measure_vehicles(tmp_path / "frames", camera, return_tracks=True,
+        _, rows = vtrack.vehicles.measure_vehicles(tmp_path / "frames", camera, return_tracks=True, **STACKED,
                                                    hidden_horizon=0.0, **params)
         before = {int(r[1]) for r in rows if r[0] <= split}
         after_a = {int(r[1]) for r in rows if r[0] > split and r[3] > 60}  # box top below B's bottom
@@ -297,6 +303,68 @@ def test_a_blob_that_never_moves_is_a_ghost_not_a_vehicle(tmp_path):
     assert len(ids) == 2 and sorted(row_x.values()) == [39.5, 149.5]
 
 
+SIDE_SMALL = dict(height=10.0, pitch=20.0, yaw=38.0, lateral=-9.0, focal=450.0, image_width=480, image_height=270)
+SIZES = {"car": (1.8, 1.5, 4.5), "truck": (2.5, 3.6, 9.0), "bus": (2.55, 3.2, 12.0)}
+
+
+def placed_scene(setup, placed, fps=12.5):
+    """A road scene with the vehicles `placed`, (class, lane, entry time in s) each, at the sizes
+    above and 25 m/s, centred in their lanes, each its own colour."""
+    from vtrack.synthetic_road import CameraSetup, RoadVehicle, VEHICLE_CLASSES
+    scene = make_road_scene(CameraSetup(**setup), n_vehicles=1, seed=1, fps=fps, lane_speeds=[25.0] * 4)
+    colours = ([200.0, 60, 60], [60.0, 200, 60], [60.0, 60, 200])
+    scene.vehicles = [
+        RoadVehicle(i + 1, cls, VEHICLE_CLASSES[cls]["heavy"], *SIZES[cls], lane, -1 if lane < 2 else 1, 25.0,
+                    lane * 3.5 + (3.5 - SIZES[cls][0]) / 2, enter, np.array(colours[i]))
+        for i, (cls, lane, enter) in enumerate(placed)]
+    stretch = scene.y_range[1] - scene.y_range[0]
+    scene.n_frames = int(math.ceil(max(v.enter + (stretch + v.L + 2.0) / v.speed for v in scene.vehicles) * fps))
+    return scene
+
+
+def test_vehicles_abreast_in_one_blob_are_cut_into_their_lanes(tmp_path):
+    """A car and a truck abreast in adjacent lanes at the same speed, seen from beside the road:
+    the truck overlaps the car in the image for their whole passage (checked on the ground truth),
+    one blob. Without the lane cut (lane_split_gap 0) it is one vehicle. With it, once the blob is
+    off the image border, its lower outline shows the two lanes: two vehicles, a light one of the
+    car's size and a heavy one of the truck's, each track's boxes its own vehicle's after the cut."""
+    scene = placed_scene(SIDE_SMALL, [("car", 0, 1.0), ("truck", 1, 1.0)])
+    paths = scene.write(tmp_path / "scene", video="video.mkv")
+    both = [k for k in range(scene.n_frames) if len(scene.present(k)) == 2]
+    boxes = {}
+    with open(paths["boxes"]) as f:
+        for r in csv.DictReader(f):
+            boxes.setdefault(int(r["frame"]), {})[int(r["vehicle_id"])] = [float(r[x]) for x in "xywh"]
+    assert all(iou(*boxes[k + 1].values()) > 0.0 for k in both if len(boxes.get(k + 1, {})) == 2)
+    vehicles, rows = vtrack.vehicles.measure_vehicles(paths["video"], paths["camera"], return_tracks=True,
+                                                      lane_split_gap=0.0)
+    assert len(vehicles) == 1
+    vehicles, rows = vtrack.vehicles.measure_vehicles(paths["video"], paths["camera"], return_tracks=True)
+    assert len(vehicles) == 2
+    car, truck = sorted(vehicles, key=lambda e: e["L"])
+    assert car["light_heavy"] == "light" and truck["light_heavy"] == "heavy"
+    for e, size in ((car, SIZES["car"]), (truck, SIZES["truck"])):
+        assert [e[x] for x in "WHL"] == pytest.approx(size, abs=1.2), e
+    split = min(r[0] for r in rows if r[1] == truck["vehicle_id"])
+    after = rows[rows[:, 0] >= split]
+    assert match_to_truth(paths, after) == {car["vehicle_id"]: 1, truck["vehicle_id"]: 2}
+
+
+@pytest.mark.parametrize("setup", ["side", "gantry", "mast_low"])
+def test_a_lone_long_vehicle_is_never_cut(tmp_path, setup):
+    """A bus alone on the road, in a near and then a far lane, seen from beside, above and along
+    the road: its lower outline stays within its width across the road, so it is one vehicle,
+    heavy, with one track."""
+    from vtrack.synthetic_road import CAMERA_SETUPS
+    from dataclasses import asdict
+    small = dict(asdict(CAMERA_SETUPS[setup]), focal=450.0, image_width=480, image_height=270, dist=())
+    scene = placed_scene(small, [("bus", 1, 1.0), ("bus", 3, 8.0)])
+    paths = scene.write(tmp_path / "scene", video="video.mkv")
+    vehicles, rows = vtrack.vehicles.measure_vehicles(paths["video"], paths["camera"], return_tracks=True)
+    assert len(vehicles) == 2 and all(e["light_heavy"] == "heavy" for e in vehicles), vehicles
+    assert sorted(match_to_truth(paths, rows).values()) == [1, 2]
+
+
 def test_outlines_of_a_vehicle_found_later_are_not_the_track_s_own(tmp_path):
     """The stacked pair parts at frame 26 (video frame 25) of 60: until then one blob, A's track
     (its lowest point is A's), with no track of B to mark it as two vehicles'. B's track, from the
@@ -309,7 +377,8 @@ def test_outlines_of_a_vehicle_found_later_are_not_the_track_s_own(tmp_path):
     camera = stacked_pair_frames(tmp_path / "frames", 60, split)
 
     def run(**params):
-        vehicles, rows = vtrack.vehicles.measure_vehicles(tmp_path / "frames", camera, return_tracks=True, **params)
+        vehicles, rows = vtrack.vehicles.measure_vehicles(tmp_path / "frames", camera, return_tracks=True, **STACKED,
+                                                            **params)
         (a,) = {int(r[1]) for r in rows if r[0] > split + 1 and r[4] == 20.0}  # A's own box, 20 px wide
         return next(e for e in vehicles if e["vehicle_id"] == a), rows[rows[:, 1] == a]
 

@@ -63,8 +63,8 @@ def measure_vehicles(video: Union[str, PathLike], camera: CameraLike, *,
     file. config: a file or sections ``{"seed", "background", "blobs", "estimator"}``. params: any
     parameter of those sections by name (the estimator's are
     :meth:`VehicleDimensionEstimator.default_params`; blobs: foreground_threshold, blob_closing,
-    min_area, min_overlap, merge_min_share, foot_gate, hidden_horizon, hidden_max_passage, hold_views,
-    lost_memory, confirm_frames, min_travel;
+    min_area, min_overlap, merge_min_share, foot_gate, lane_split_gap, lane_split_hold, hidden_horizon,
+    hidden_max_passage, hold_views, lost_memory, confirm_frames, min_travel;
     background: ``KdeBackground``'s). out, tracks, render: also write vehicles.csv, the MOTChallenge
     rows of the vehicles' image boxes, the annotated video. progress: True or a callable(done,
     total).

@@ -158,6 +158,8 @@ const core::ParameterTable<VehicleBlobParams>& VehicleBlobParams::table() {
                             .add("min_overlap", &P::min_overlap)
                             .add("merge_min_share", &P::merge_min_share)
                             .add("foot_gate", &P::foot_gate)
+                            .add("lane_split_gap", &P::lane_split_gap)
+                            .add("lane_split_hold", &P::lane_split_hold)
                             .add("hidden_horizon", &P::hidden_horizon)
                             .add("hidden_max_passage", &P::hidden_max_passage)
                             .add("hold_views", &P::hold_views)
@@ -178,6 +180,10 @@ void validate(const VehicleBlobParams& p) {
           p.merge_min_share, "in [0, 1]");
   require(p.foot_gate >= 0.0 && std::isfinite(p.foot_gate), "foot_gate", p.foot_gate,
           "a finite number >= 0 (a share of the predicted box's height; 0: off)");
+  require(p.lane_split_gap >= 0.0 && std::isfinite(p.lane_split_gap), "lane_split_gap", p.lane_split_gap,
+          "a finite number of metres >= 0 (0: off)");
+  require(p.lane_split_hold >= 0.0 && p.lane_split_hold <= 60.0, "lane_split_hold", p.lane_split_hold,
+          "seconds in [0, 60]");
   require(p.hidden_horizon >= 0.0 && std::isfinite(p.hidden_horizon), "hidden_horizon", p.hidden_horizon,
           "a finite number >= 0 (a share of a track's passage; 0: off)");
   require(p.hidden_max_passage >= 0.0 && std::isfinite(p.hidden_max_passage), "hidden_max_passage",
@@ -247,6 +253,10 @@ struct Blob {
   cv::Point2d foot;
   Eigen::Vector2d ground = Eigen::Vector2d::Zero();
   bool has_ground = false;
+  bool split = false;       // a part of a split component: its outline may hold the other vehicle's
+  int cut_streak = 0;       // consecutive frames up to this one in which this blob was split
+  bool cut_whole = false;   // blobs_to_track(): split, but tracked whole (its outline may be two vehicles')
+  std::vector<Blob> parts;  // split_across_lanes(): the component's parts when it was split, else none
 };
 
 // The lowest contour point (the mean x of the lowest row's points) and its road point; no ground
@@ -270,29 +280,212 @@ void find_ground(Blob& blob, const models::Camera& camera, int width, int height
   }
 }
 
-// Connected components of the closed foreground of at least min_area pixels, with their outer
-// contours (pixel centres) and ground points.
-std::vector<Blob> find_blobs(const cv::Mat& mask, int min_area, const models::Camera& camera, cv::Mat& labels) {
+// The lowest pixel of each column of component `label` inside `box` and where it meets the road
+// across it (metres along the camera's lateral axis); empty when the component touches the image's
+// left, right or bottom edge (the border then cuts its bottom edges: the lowest pixels of the
+// columns beside the cut lie on its sides, above the road) or a lowest pixel lies at or above the
+// horizon.
+struct ColumnFoot {
+  int x;
+  double lateral;
+};
+std::vector<ColumnFoot> lower_outline(const cv::Mat& labels, int label, const cv::Rect& box,
+                                      const models::Camera& camera) {
+  if (box.x <= 0 || box.x + box.width >= labels.cols || box.y + box.height >= labels.rows) return {};
+  std::vector<int> xs, ys;
+  for (int x = box.x; x < box.x + box.width; ++x) {
+    for (int y = box.y + box.height - 1; y >= box.y; --y) {
+      if (labels.at<int>(y, x) == label) {
+        xs.push_back(x), ys.push_back(y);
+        break;
+      }
+    }
+  }
+  Eigen::Matrix2Xd pixels(2, xs.size());
+  for (std::size_t j = 0; j < xs.size(); ++j) pixels.col(j) << xs[j], ys[j];
+  std::vector<ColumnFoot> feet;
+  try {
+    const Eigen::Matrix2Xd road = camera.image_to_road_points(pixels);
+    const Eigen::Vector2d across = camera.lateral_axis().head<2>();
+    for (std::size_t j = 0; j < xs.size(); ++j) feet.push_back({xs[j], road.col(j).dot(across)});
+  } catch (const InvalidArgument&) {
+    feet.clear();  // at or above the horizon: not a vehicle on the road
+  }
+  return feet;
+}
+
+// The image column at which a blob's lower outline (lower_outline()) parts into two vehicles in
+// different lanes, or nullopt (header: lane_split_gap). A cuboid on the road, seen by a camera with
+// no roll, has the images of its bottom edges as its lower outline: they meet the road within its
+// width W (<= 2.6 m) across it, sweeping it continuously along the front or rear edge. Two vehicles
+// abreast in adjacent lanes leave a gap across the road of a lane's width less their half widths
+// (>= ~1 m on 3.5 m lanes) between their lower outlines. So the outline is cut where its sorted
+// lateral positions leave a gap of `gap` metres or more with at least a sixth of the columns (and
+// 3) on either side, and the two sides must be runs of columns, one left of the other, but for a
+// tenth of the columns (pixel noise at the seam): a far vehicle showing on both sides of a near
+// one is no clean cut, and the blob stays whole (the tracker's merges handle it).
+std::optional<int> lane_cut(const std::vector<ColumnFoot>& feet, double gap) {
+  const int n = static_cast<int>(feet.size());
+  const int min_side = std::max(3, n / 6);
+  if (gap <= 0.0 || n < 2 * min_side) return std::nullopt;
+  std::vector<double> sorted;
+  for (const auto& f : feet) sorted.push_back(f.lateral);
+  std::sort(sorted.begin(), sorted.end());
+  int widest = -1;
+  for (int j = min_side; j <= n - min_side; ++j) {
+    const double g = sorted[j] - sorted[j - 1];
+    if (g >= gap && (widest < 0 || g > sorted[widest] - sorted[widest - 1])) widest = j;
+  }
+  if (widest < 0) return std::nullopt;
+  // Each side one vehicle's: its lower outline within a vehicle's width across the road.
+  constexpr double kWidestVehicle = 3.0;
+  if (sorted[widest - 1] - sorted[0] > kWidestVehicle || sorted[n - 1] - sorted[widest] > kWidestVehicle) {
+    return std::nullopt;
+  }
+  const double threshold = 0.5 * (sorted[widest] + sorted[widest - 1]);
+  // Misplaced columns for a cut before foot j (feet in increasing x), with the far side (lateral >
+  // threshold) left of it (far_left) or right of it (far_right).
+  int far_total = 0;
+  for (const auto& f : feet) far_total += f.lateral > threshold;
+  int far_before = 0, best_errors = n, best_j = 0;
+  for (int j = 0; j <= n; ++j) {
+    const int near_before = j - far_before;
+    const int far_left = near_before + (far_total - far_before);       // far side left of the cut
+    const int far_right = far_before + (n - j - (far_total - far_before));  // far side right of it
+    if (std::min(far_left, far_right) < best_errors) best_errors = std::min(far_left, far_right), best_j = j;
+    if (j < n) far_before += feet[j].lateral > threshold;
+  }
+  if (best_j == 0 || best_j == n || best_errors > n / 10) return std::nullopt;
+  return feet[best_j].x;
+}
+
+// The colour histogram (8 x 8 x 8 BGR bins, +1 per bin) of `frame` over `mask` within `box`,
+// normalised to a probability.
+cv::Mat colour_histogram(const cv::Mat& frame, const cv::Rect& box, const cv::Mat& mask) {
+  cv::Mat hist;
+  const int channels[] = {0, 1, 2}, bins[] = {8, 8, 8};
+  const float range[] = {0.f, 256.f};
+  const float* ranges[] = {range, range, range};
+  cv::Mat roi = frame(box);
+  cv::calcHist(&roi, 1, channels, mask, hist, 3, bins, ranges);
+  hist += 1.0f;
+  return hist / cv::sum(hist)[0];
+}
+
+// After a lane cut, the far vehicle's body above the near one in the near vehicle's columns: a
+// pixel of the near part above its lowest quarter whose colour is twice as likely under the far
+// part's colours as under the near part's lowest quarter (surely the near vehicle's) goes to the
+// far part's label.
+void give_far_body_back(cv::Mat& labels, const cv::Mat& frame, const cv::Rect& near_box, int near_label,
+                        const cv::Rect& far_box, int far_label) {
+  const cv::Mat far_hist = colour_histogram(frame, far_box, labels(far_box) == far_label);
+  const int seed_top = near_box.y + near_box.height * 3 / 4;
+  const cv::Rect seed(near_box.x, seed_top, near_box.width, near_box.y + near_box.height - seed_top);
+  const cv::Mat near_hist = colour_histogram(frame, seed, labels(seed) == near_label);
+  for (int y = near_box.y; y < seed_top; ++y) {
+    for (int x = near_box.x; x < near_box.x + near_box.width; ++x) {
+      if (labels.at<int>(y, x) != near_label) continue;
+      const cv::Vec3b c = frame.at<cv::Vec3b>(y, x);
+      const int b = c[0] / 32, g = c[1] / 32, r = c[2] / 32;
+      if (far_hist.at<float>(b, g, r) > 2.0f * near_hist.at<float>(b, g, r)) labels.at<int>(y, x) = far_label;
+    }
+  }
+}
+
+// Splits component `label` (box `box`) at lane_cut()'s column, the part right of the cut under a
+// new label, gives the far vehicle's body above the near one back to the far part
+// (give_far_body_back(); the near part is the one reaching lower in the image), and splits each
+// part again (three lanes' vehicles); the parts' labels with their boxes, or the component whole.
+// A part under min_area pixels is no vehicle.
+std::vector<std::pair<int, cv::Rect>> split_across_lanes(cv::Mat& labels, const cv::Mat& frame, int label,
+                                                         const cv::Rect& box, const models::Camera& camera,
+                                                         double gap, int min_area, int& next_label) {
+  const auto cut = lane_cut(lower_outline(labels, label, box, camera), gap);
+  if (!cut) return {{label, box}};
+  const cv::Rect left_cols(box.x, box.y, *cut - box.x, box.height);
+  const cv::Rect right_cols(*cut, box.y, box.x + box.width - *cut, box.height);
+  const cv::Mat left = labels(left_cols) == label, right = labels(right_cols) == label;
+  if (cv::countNonZero(left) < min_area || cv::countNonZero(right) < min_area) return {{label, box}};
+  const int new_label = next_label++;
+  labels(right_cols).setTo(new_label, right);
+  cv::Rect left_box = cv::boundingRect(left) + left_cols.tl(), right_box = cv::boundingRect(right) + right_cols.tl();
+  if (frame.type() == CV_8UC3) {
+    if (left_box.br().y >= right_box.br().y) give_far_body_back(labels, frame, left_box, label, right_box, new_label);
+    else give_far_body_back(labels, frame, right_box, new_label, left_box, label);
+    left_box = cv::boundingRect(labels(box) == label) + box.tl();
+    right_box = cv::boundingRect(labels(box) == new_label) + box.tl();
+    if (left_box.area() == 0 || right_box.area() == 0) return {{label, box}};
+  }
+  auto parts = split_across_lanes(labels, frame, label, left_box, camera, gap, min_area, next_label);
+  auto more = split_across_lanes(labels, frame, new_label, right_box, camera, gap, min_area, next_label);
+  parts.insert(parts.end(), more.begin(), more.end());
+  return parts;
+}
+
+// One blob of component `label` within `box`: its outer contour (pixel centres; the longest one)
+// and ground point; nullopt when it has no contour.
+std::optional<Blob> blob_of(const cv::Mat& labels, int label, const cv::Rect& box, const models::Camera& camera) {
+  std::vector<std::vector<cv::Point>> contours;
+  cv::findContours(labels(box) == label, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE, box.tl());
+  if (contours.empty()) return std::nullopt;
+  std::size_t best = 0;
+  for (std::size_t c = 1; c < contours.size(); ++c) {
+    if (contours[c].size() > contours[best].size()) best = c;
+  }
+  Blob blob;
+  blob.label = label;
+  blob.box = box;
+  blob.contour = std::move(contours[best]);
+  find_ground(blob, camera, labels.cols, labels.rows);
+  return blob;
+}
+
+// Connected components of the closed foreground of at least min_area pixels as blobs, each with
+// its parts when split across lanes (split_across_lanes(); the parts' pixels carry their own
+// labels until associate() takes the component whole: restore_whole()).
+std::vector<Blob> find_blobs(const cv::Mat& mask, const cv::Mat& frame, const VehicleBlobParams& p,
+                             const models::Camera& camera, cv::Mat& labels) {
   cv::Mat stats, centroids;
   const int n = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
+  int next_label = n;
   std::vector<Blob> out;
   for (int i = 1; i < n; ++i) {
-    if (stats.at<int>(i, cv::CC_STAT_AREA) < min_area) continue;
-    const cv::Rect box(stats.at<int>(i, cv::CC_STAT_LEFT), stats.at<int>(i, cv::CC_STAT_TOP),
-                       stats.at<int>(i, cv::CC_STAT_WIDTH), stats.at<int>(i, cv::CC_STAT_HEIGHT));
-    cv::Mat one = labels(box) == i;
-    std::vector<std::vector<cv::Point>> contours;
-    cv::findContours(one, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE, box.tl());
-    if (contours.empty()) continue;
-    std::size_t best = 0;
-    for (std::size_t c = 1; c < contours.size(); ++c) {
-      if (contours[c].size() > contours[best].size()) best = c;
+    if (stats.at<int>(i, cv::CC_STAT_AREA) < p.min_area) continue;
+    const cv::Rect component(stats.at<int>(i, cv::CC_STAT_LEFT), stats.at<int>(i, cv::CC_STAT_TOP),
+                             stats.at<int>(i, cv::CC_STAT_WIDTH), stats.at<int>(i, cv::CC_STAT_HEIGHT));
+    auto whole = blob_of(labels, i, component, camera);
+    if (!whole) continue;
+    const auto parts = split_across_lanes(labels, frame, i, component, camera, p.lane_split_gap, 4 * p.min_area, next_label);
+    for (std::size_t k = 0; parts.size() > 1 && k < parts.size(); ++k) {
+      if (auto part = blob_of(labels, parts[k].first, parts[k].second, camera)) {
+        part->split = true;
+        whole->parts.push_back(std::move(*part));
+      }
     }
-    Blob blob{i, box, std::move(contours[best]), {}, Eigen::Vector2d::Zero(), false};
-    find_ground(blob, camera, mask.cols, mask.rows);
-    out.push_back(std::move(blob));
+    out.push_back(std::move(*whole));
   }
   return out;
+}
+
+// Each split blob's cut_streak: 1 + that of the last frame's split blob it overlaps most (0 if
+// none); `before` becomes this frame's split blobs.
+void count_cut_streaks(std::vector<Blob>& blobs, std::vector<std::pair<cv::Rect, int>>& before) {
+  std::vector<std::pair<cv::Rect, int>> now;
+  for (Blob& blob : blobs) {
+    if (blob.parts.empty()) continue;
+    int area = 0, streak = 0;
+    for (const auto& [box, s] : before) {
+      if ((box & blob.box).area() > area) area = (box & blob.box).area(), streak = s;
+    }
+    blob.cut_streak = streak + 1;
+    now.emplace_back(blob.box, blob.cut_streak);
+  }
+  before = std::move(now);
+}
+
+// Gives a split blob's pixels its own label back (a merge of tracked vehicles is taken whole).
+void restore_whole(cv::Mat& labels, const Blob& blob) {
+  for (const Blob& part : blob.parts) labels(part.box).setTo(blob.label, labels(part.box) == part.label);
 }
 
 double overlap(const cv::Rect2d& a, const cv::Rect2d& b) {
@@ -419,6 +612,35 @@ double label_share(const cv::Mat& labels, int label, const cv::Rect2d& box) {
   return cv::countNonZero(labels(r) == label) / box.area();
 }
 
+// Whether a track's predicted box `pred` is a member of a merge in blob box `blob`: half or more
+// of it inside the blob's box, and at least merge_min_share of the blob box's area.
+bool merge_member(const cv::Rect2d& blob, const cv::Rect2d& pred, double merge_min_share) {
+  return (blob & pred).area() >= 0.5 * pred.area() && pred.area() >= merge_min_share * blob.area();
+}
+
+// The blobs a frame's tracking takes: a split blob (find_blobs()) in its parts, unless it is a
+// merge of more tracked vehicles than it has parts (a dense clump: the column cut would hand their
+// tracks fragments; they coast through it, as through any merge) or it covers at most one tracked
+// vehicle and has been cut in fewer than min_streak frames in a row (header: lane_split_hold).
+std::vector<Blob> blobs_to_track(std::vector<Blob> blobs, const std::vector<cv::Rect2d>& pred, double merge_min_share,
+                                 int min_streak, cv::Mat& labels) {
+  std::vector<Blob> out;
+  for (Blob& blob : blobs) {
+    const auto members = std::count_if(pred.begin(), pred.end(), [&](const cv::Rect2d& r) {
+      return merge_member(cv::Rect2d(blob.box), r, merge_min_share);
+    });
+    const bool fresh = members < 2 && blob.cut_streak < min_streak;
+    if (blob.parts.empty() || fresh || members > static_cast<long>(blob.parts.size())) {
+      blob.cut_whole = !blob.parts.empty();
+      restore_whole(labels, blob);
+      out.push_back(std::move(blob));
+    } else {
+      for (Blob& part : blob.parts) out.push_back(std::move(part));
+    }
+  }
+  return out;
+}
+
 // One frame of the blob tracker (see the header). Tracks are predicted (predicted()), so
 // that vehicles crossing in the image keep their identities. A blob covering half or more of the
 // predicted boxes of two or more tracks, each at least merge_min_share of the blob's box, is their
@@ -427,24 +649,27 @@ double label_share(const cv::Mat& labels, int label, const cv::Rect2d& box) {
 // goes to its track, the small one coasts, and the blob's outline is marked as no one cuboid's.
 // Other blobs continue the track whose predicted box they overlap most (greedy in decreasing
 // intersection over union, >= min_overlap) and whose predicted foot they agree with (foot_gate), or
-// start one.
-std::vector<Assignment> associate(std::vector<BlobTrack>& tracks, const std::vector<Blob>& blobs,
-                                  const cv::Mat& labels, long long frame, const VehicleBlobParams& p,
-                                  const models::Camera& camera, int& next_id) {
+// start one. A part of a split blob (blobs_to_track()) is one vehicle's by construction: it is
+// never a merge, only matched by overlap. A blob cut but tracked whole, and a part (whose outline
+// may keep some of the other vehicle's), are joined: their outlines go to the second estimator.
+std::vector<Assignment> associate(std::vector<BlobTrack>& tracks, std::vector<Blob>& blobs, cv::Mat& labels,
+                                  long long frame, const VehicleBlobParams& p, const models::Camera& camera,
+                                  int min_streak, int& next_id) {
   std::vector<cv::Rect2d> pred;
   for (const auto& t : tracks) pred.push_back(predicted(t, frame, camera));
+  blobs = blobs_to_track(std::move(blobs), pred, p.merge_min_share, min_streak, labels);
   std::vector<Assignment> out(blobs.size());
   std::vector<bool> taken(tracks.size(), false);
   for (std::size_t b = 0; b < blobs.size(); ++b) {
     const cv::Rect2d blob_box(blobs[b].box);
     std::vector<std::size_t> covered, small;
-    for (std::size_t t = 0; t < tracks.size(); ++t) {
-      if ((blob_box & pred[t]).area() < 0.5 * pred[t].area()) continue;
-      if (pred[t].area() >= p.merge_min_share * blob_box.area()) covered.push_back(t);
-      else if (label_share(labels, blobs[b].label, pred[t]) >= 0.5) small.push_back(t);
+    for (std::size_t t = 0; t < tracks.size() && !blobs[b].split; ++t) {
+      if (merge_member(blob_box, pred[t], p.merge_min_share)) covered.push_back(t);
+      else if ((blob_box & pred[t]).area() >= 0.5 * pred[t].area() &&
+               label_share(labels, blobs[b].label, pred[t]) >= 0.5) small.push_back(t);
     }
     out[b].merged = covered.size() >= 2;
-    out[b].joined = !small.empty();
+    out[b].joined = !small.empty() || blobs[b].split || blobs[b].cut_whole;
     if (!out[b].merged) covered.clear();
     covered.insert(covered.end(), small.begin(), small.end());
     for (std::size_t t : covered) {
@@ -833,9 +1058,11 @@ VehiclePipelineResult measure_vehicles(const std::string& video, const models::C
                              : cv::Mat();
   VehiclePipelineResult result;
   std::vector<BlobTrack> tracks;
-  HeldViews views(blob, source.fps() > 0 ? source.fps() : 25.0, cv::Size(source.width(), source.height()), estimator,
-                  joined_views);
+  const double fps = source.fps() > 0 ? source.fps() : 25.0;
+  HeldViews views(blob, fps, cv::Size(source.width(), source.height()), estimator, joined_views);
   int next_id = 1;
+  const int min_streak = std::max(1, static_cast<int>(std::lround(blob.lane_split_hold * fps)));
+  std::vector<std::pair<cv::Rect, int>> cut_before;  // the last frame's split blobs (count_cut_streaks())
   cv::Mat frame, y, mask, labels;
   while (source.read(frame)) {
     core::poll_interrupt();
@@ -843,8 +1070,9 @@ VehiclePipelineResult measure_vehicles(const std::string& video, const models::C
     background.apply(frame, y);
     image::foreground_mask(y, blob.foreground_threshold, mask);
     if (!kernel.empty()) cv::morphologyEx(mask, mask, cv::MORPH_CLOSE, kernel);
-    const std::vector<Blob> blobs = find_blobs(mask, blob.min_area, estimator.camera(), labels);
-    const auto matched = associate(tracks, blobs, labels, k, blob, estimator.camera(), next_id);
+    std::vector<Blob> blobs = find_blobs(mask, frame, blob, estimator.camera(), labels);
+    count_cut_streaks(blobs, cut_before);
+    const auto matched = associate(tracks, blobs, labels, k, blob, estimator.camera(), min_streak, next_id);
     for (std::size_t b = 0; b < blobs.size(); ++b) {
       if (matched[b].merged) continue;  // two or more vehicles in one blob: no one's silhouette
       const int id = tracks[matched[b].track].id;
@@ -888,3 +1116,4 @@ VehiclePipelineResult measure_vehicles(const std::string& video, const models::C
 }
 
 }  // namespace vtrack::apps
+

@@ -112,9 +112,25 @@ void write_vehicles_csv(const std::string& path, const std::vector<filters::Vehi
 // hidden_max_passage 0 (no limit) no bound exists and every view is held to the end of the video
 // (~1 KB a view: ~300 MB per hour of busy road at 25 frames/s), as hold_views = true does with
 // the limit (the same answer as streaming; for tests).
-// Vehicles side by side at the same speed for their whole passage stay one blob: one track, the
-// estimator fed a two-vehicle outline (a limitation; benchmarks/vehicles.py counts it). A track
-// matched in fewer than confirm_frames frames is not reported (a flicker of the background).
+// Vehicles abreast in adjacent lanes, seen from beside the road, overlap in the image and can stay
+// one blob for their whole passage (at the same speed). Such a blob is cut at an image column
+// where its lower outline (the lowest pixel of each column: for one cuboid the images of its
+// bottom edges, within its width across the road) leaves a gap across the road of lane_split_gap
+// metres or more between two runs of columns: two lanes' vehicles (src/apps/vehicles.cpp,
+// lane_cut(), gives the rule). In colour video, pixels of the near part above its lowest quarter
+// whose colour is twice as likely under the far part's colours go back to the far part (the far
+// vehicle's body above the near one: the binary mask cannot tell where the near vehicle's roof
+// is). The parts are tracked as blobs, never as merges; their outlines may still hold some of the
+// other vehicle, so they go to the second estimator as joined ones. A blob of at most one tracked
+// vehicle is taken in its parts only once it has been cut in every frame for lane_split_hold
+// seconds: a clump of traffic far off may show such a gap for a frame or two (gantry seed 100: a
+// bus among four cars, whose track the cut broke), and cutting at once started short tracks of
+// fragments (benchmarks/vehicles.py: the values tried). Until then the blob is one track's, its
+// outline a joined one. A blob of two tracked vehicles is cut at once (they are known to be two).
+// Vehicles abreast in the same image columns (a camera along the road) or in one lane stay one
+// blob: one track, the estimator fed a two-vehicle outline (a limitation; benchmarks/vehicles.py
+// counts it). A track matched in fewer than confirm_frames frames is not reported (a flicker of
+// the background).
 // Nor is a track whose ground points lie within min_travel metres of one another along the road:
 // a ghost of the background (road uncovered where something stood while the background was
 // learnt, a patch of changed light). A vehicle enters the view moving, so even one that stops in
@@ -133,6 +149,8 @@ struct VehicleBlobParams {
   double min_overlap = 0.2;           // intersection over union to continue a track
   double merge_min_share = 0.2;       // a merge member's predicted box area / the blob box's (above)
   double foot_gate = 0.5;             // foot off the predicted one / predicted height (above); 0 = off
+  double lane_split_gap = 0.8;        // metres across the road between two lanes' vehicles (above); 0 = off
+  double lane_split_hold = 0.25;      // seconds a blob stays cut before its parts start tracks (above)
   double hidden_horizon = 1.0;        // outlines holding a hidden vehicle, x its passage (above); 0 = off
   double hidden_max_passage = 120.0;  // seconds: longer passages hide nowhere (above); 0 = no limit
   bool hold_views = false;            // true: every view held to the end of the video (above)
