@@ -1116,4 +1116,3 @@ VehiclePipelineResult measure_vehicles(const std::string& video, const models::C
 }
 
 }  // namespace vtrack::apps
-
