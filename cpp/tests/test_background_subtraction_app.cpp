@@ -6,6 +6,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
 
+#include "scratch_dir.hpp"
 #include "vtrack/apps/background_subtraction.hpp"
 #include "vtrack/core/errors.hpp"
 
@@ -14,16 +15,8 @@ using namespace vtrack;
 
 namespace {
 
-class BgsAppTest : public ::testing::Test {
+class BgsAppTest : public ScratchDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("vtrack_bgs_app_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   // A 40-frame Motion-JPEG clip of a bright square moving over a grey background.
   std::string write_clip() const {
     const std::string path = (dir_ / "clip.avi").string();
@@ -35,8 +28,6 @@ class BgsAppTest : public ::testing::Test {
     }
     return path;
   }
-
-  fs::path dir_;
 };
 
 }  // namespace

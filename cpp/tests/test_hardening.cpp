@@ -13,6 +13,7 @@
 
 #include <unistd.h>
 
+#include "scratch_dir.hpp"
 #include "vtrack/apps/config.hpp"
 #include "vtrack/apps/hog_detector.hpp"
 #include "vtrack/apps/mot_files.hpp"
@@ -34,21 +35,12 @@ using vtrack::apps::Detection;
 using vtrack::apps::TrackRow;
 
 // A fresh folder under the system temp folder, removed with the fixture.
-class Scratch : public ::testing::Test {
+class Scratch : public ScratchDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("vtrack_hardening_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
   std::string file(const std::string& name, const std::string& text = "") {
     std::ofstream(dir_ / name, std::ios::binary) << text;
     return (dir_ / name).string();
   }
-  fs::path dir_;
 };
 
 struct Stop {};

@@ -10,6 +10,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "road_scene.hpp"
+#include "scratch_dir.hpp"
 #include "vtrack/apps/vehicles.hpp"
 
 namespace fs = std::filesystem;
@@ -33,16 +34,8 @@ struct PlacedVehicle {
   cv::Scalar colour;
 };
 
-class VehiclePipelineTest : public ::testing::Test {
+class VehiclePipelineTest : public ScratchDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("vtrack_vehicle_pipeline_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   // 8 frames of empty road, then the vehicles (far ones first: the nearer paint over them) driving
   // towards the camera's side of the view together, 2 m a frame, rears level, from Y = 75 m to -5 m.
   std::string write_frames(const std::vector<PlacedVehicle>& vehicles) const {
@@ -69,8 +62,6 @@ class VehiclePipelineTest : public ::testing::Test {
     params.blobs.lane_split_gap = lane_split_gap;
     return apps::measure_vehicles(frames, models::Camera(side_camera()), models::table1_vehicle_models(), params);
   }
-
-  fs::path dir_;
 };
 
 }  // namespace

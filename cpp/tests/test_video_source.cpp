@@ -6,6 +6,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
 
+#include "scratch_dir.hpp"
 #include "vtrack/apps/video_source.hpp"
 #include "vtrack/core/errors.hpp"
 
@@ -14,17 +15,8 @@ using namespace vtrack::apps;
 
 namespace {
 
-class VideoSourceTest : public ::testing::Test {
+class VideoSourceTest : public ScratchDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("vtrack_video_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-            "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   cv::Mat frame(int i) const {
     cv::Mat f(48, 64, CV_8UC3, cv::Scalar(i * 10 % 255, 100, 200));
     return f;
@@ -38,8 +30,6 @@ class VideoSourceTest : public ::testing::Test {
     for (int i = 0; i < frames; ++i) writer.write(frame(i));
     return path;
   }
-
-  fs::path dir_;
 };
 
 }  // namespace
