@@ -582,6 +582,9 @@ found, 64/64 light, 16/16 heavy with it. This benchmark, seed 2900, the new set-
 `--video-set lane_split_gap=0` for off): far_side_right found 38 -> 39/40, light 35/35 -> 34/36,
 MAE W H L 0.19 0.16 0.45 -> 0.17 0.20 0.52 m, 15.5 -> 15.8 ms per frame; pole_hd unchanged, 28.2
 -> 28.5 ms per frame; the naive 2-D baseline 77.8-80.0 % light with its oracle threshold.
+Tried and not kept: heavy_height off for the second estimator (outlines of more than one vehicle,
+the parts of a cut): tuning heavy 226/230 -> 225/230, set-ups 2500-2900 heavy 40/41 -> 39/41,
+light unchanged on both (the cars called heavy above are not decided there).
 """
 
 import argparse
