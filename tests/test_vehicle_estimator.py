@@ -281,9 +281,8 @@ def test_a_blob_that_never_moves_is_a_ghost_not_a_vehicle(tmp_path):
     vehicle. The moving one is reported either way."""
     import cv2
     from vtrack.synthetic_road import CameraSetup
-    scene = make_road_scene(CameraSetup(**SMALL_MAST), n_vehicles=1, seed=0)
     camera = tmp_path / "camera.json"
-    camera.write_text(json.dumps(scene.camera_file()))
+    camera.write_text(json.dumps(CameraSetup(**SMALL_MAST).camera_file()))
     (tmp_path / "frames").mkdir()
     for k in range(60):
         img = np.full((180, 320, 3), 110, np.uint8)
@@ -311,15 +310,14 @@ def placed_scene(setup, placed, fps=12.5):
     """A road scene with the vehicles `placed`, (class, lane, entry time in s) each, at the sizes
     above and 25 m/s, centred in their lanes, each its own colour."""
     from vtrack.synthetic_road import CameraSetup, RoadVehicle, VEHICLE_CLASSES
-    scene = make_road_scene(CameraSetup(**setup), n_vehicles=1, seed=1, fps=fps, lane_speeds=[25.0] * 4)
+    road = make_road_scene(CameraSetup(**setup), n_vehicles=1, seed=1, fps=fps)
     colours = ([200.0, 60, 60], [60.0, 200, 60], [60.0, 60, 200])
-    scene.vehicles = [
-        RoadVehicle(i + 1, cls, VEHICLE_CLASSES[cls]["heavy"], *SIZES[cls], lane, -1 if lane < 2 else 1, 25.0,
-                    lane * 3.5 + (3.5 - SIZES[cls][0]) / 2, enter, np.array(colours[i]))
-        for i, (cls, lane, enter) in enumerate(placed)]
-    stretch = scene.y_range[1] - scene.y_range[0]
-    scene.n_frames = int(math.ceil(max(v.enter + (stretch + v.L + 2.0) / v.speed for v in scene.vehicles) * fps))
-    return scene
+    lane_width = road.lane_width
+    return road.with_vehicles([
+        RoadVehicle(i + 1, cls, VEHICLE_CLASSES[cls]["heavy"], *SIZES[cls], lane,
+                    -1 if lane < road.n_lanes / 2 else 1, 25.0, lane * lane_width + (lane_width - SIZES[cls][0]) / 2,
+                    enter, np.array(colours[i]))
+        for i, (cls, lane, enter) in enumerate(placed)])
 
 
 def test_vehicles_abreast_in_one_blob_are_cut_into_their_lanes(tmp_path):

@@ -413,6 +413,14 @@ class RoadScene:
     def camera_file(self) -> dict:
         return self.setup.camera_file()
 
+    def with_vehicles(self, vehicles: Sequence[RoadVehicle]) -> RoadScene:
+        """The same road and camera with hand-placed `vehicles` (ids 1, 2, ... in entry order,
+        lanes of this scene's width), lasting until the last of them has left the stretch."""
+        out = RoadScene(self.setup, list(vehicles), _frames_to_clear(vehicles, self.y_range, self.fps), self.fps,
+                        self.n_lanes, self.lane_width, self.y_range, self.seed, self.noise_std)
+        out._rays, out._fov, out._background = self._rays, self._fov, self._background
+        return out
+
     def write(self, folder: Union[str, os.PathLike], video: str = "video.avi") -> Dict[str, Path]:
         """Writes `video` (.avi: Motion-JPEG, .mp4: MPEG-4, .mkv: lossless FFV1), camera.json,
         vehicles.csv (id, class, light_heavy, W, H, L, lane, direction, speed, first_frame,
@@ -533,13 +541,17 @@ def make_road_scene(setup: Union[str, CameraSetup] = "mast_high", n_vehicles: in
     vehicles.sort(key=lambda v: v.enter)
     for i, v in enumerate(vehicles):
         v.id = i + 1
-    stretch = y_range[1] - y_range[0]
-    end = max(v.enter + (stretch + v.L + 2.0) / v.speed for v in vehicles)
-    scene = RoadScene(setup, vehicles, int(math.ceil(end * fps)), fps, n_lanes, lane_width, y_range, seed,
-                      noise_std)
+    scene = RoadScene(setup, vehicles, _frames_to_clear(vehicles, y_range, fps), fps, n_lanes, lane_width, y_range,
+                      seed, noise_std)
     scene._rays, scene._fov = _pixel_rays(setup)
     scene._background = _road_background(setup, scene._rays, n_lanes, lane_width, seed)
     return scene
+
+
+def _frames_to_clear(vehicles: Sequence[RoadVehicle], y_range: Tuple[float, float], fps: float) -> int:
+    """Frames until the last vehicle has left the simulated stretch."""
+    stretch = y_range[1] - y_range[0]
+    return int(math.ceil(max(v.enter + (stretch + v.L + 2.0) / v.speed for v in vehicles) * fps))
 
 
 def _pixel_rays(setup: CameraSetup) -> Tuple[np.ndarray, Tuple[np.ndarray, np.ndarray]]:
