@@ -116,11 +116,13 @@ void write_vehicles_csv(const std::string& path, const std::vector<filters::Vehi
 // one blob for their whole passage (at the same speed). Such a blob is cut at an image column
 // where its lower outline (the lowest pixel of each column: for one cuboid the images of its
 // bottom edges, within its width across the road) leaves a gap across the road of lane_split_gap
-// metres or more between two runs of columns: two lanes' vehicles (src/apps/vehicles.cpp,
-// lane_cut(), gives the rule). In colour video, pixels of the near part above its lowest quarter
-// whose colour is twice as likely under the far part's colours go back to the far part (the far
-// vehicle's body above the near one: the binary mask cannot tell where the near vehicle's roof
-// is). The parts are tracked as blobs, never as merges; their outlines may still hold some of the
+// metres or more between two runs of columns: two lanes' vehicles. A shorter near vehicle inside
+// a long far one's columns, its run between two of the far one's, is cut out of them, and a far
+// part then in pieces (two far vehicles, one either side of it) is taken as its pieces
+// (src/apps/vehicles.cpp, lane_cut(), gives the rules). In colour video, pixels of the near part
+// above its lowest quarter whose colour is twice as likely under the far part's colours go back to
+// the far part (the far vehicle's body above the near one: the binary mask cannot tell where the
+// near vehicle's roof is). The parts are tracked as blobs, never as merges; their outlines may still hold some of the
 // other vehicle, so they go to the second estimator as joined ones. A blob of at most one tracked
 // vehicle is taken in its parts only once it has been cut in every frame for lane_split_hold
 // seconds: a clump of traffic far off may show such a gap for a frame or two (gantry seed 100: a
