@@ -374,7 +374,7 @@ def test_a_near_vehicle_inside_a_far_one_s_columns_is_cut_out(tmp_path):
     car, lorry = sorted(vehicles, key=lambda e: e["L"])
     assert car["light_heavy"] == "light" and lorry["light_heavy"] == "heavy", vehicles
     assert [car[x] for x in "WHL"] == pytest.approx(SIZES["car"], abs=1.2), car
-    assert lorry["L"] > 10.0, lorry  # 13 m: the convex hull of its pieces misses the part the car hides
+    assert lorry["L"] > 10.0, lorry  # 13 m: its outlines miss the part the car hides
 
 
 @pytest.mark.parametrize("setup", ["side", "gantry", "mast_low"])

@@ -352,37 +352,44 @@ struct LaneCut {
   bool middle = false;
 };
 
-// The fewest misplaced columns, and the cut, of two runs of the feet parted at `threshold`, one
-// left of the other (three = false), or of three runs, the near vehicle's (the side nearer
-// `camera_lateral`, the camera's position across the road) between two of the far one's, each at
-// least 3 columns (three = true). Feet in increasing x.
-std::pair<int, LaneCut> runs_cut(const std::vector<ColumnFoot>& feet, double threshold, double camera_lateral,
-                                 bool three) {
-  const int n = static_cast<int>(feet.size());
+// far_before[j]: the far vehicle's feet among feet[0, j) (feet in increasing x), the sides parted
+// at `threshold`, the near one the side nearer `camera_lateral` (the camera's position across the
+// road).
+std::vector<int> far_before(const std::vector<ColumnFoot>& feet, double threshold, double camera_lateral) {
   const bool high_is_near = camera_lateral > threshold;
-  std::vector<int> far_before(n + 1, 0);  // the far vehicle's columns among feet[0, j)
-  for (int j = 0; j < n; ++j) far_before[j + 1] = far_before[j] + ((feet[j].lateral > threshold) != high_is_near);
-  const int far_total = far_before[n];
-  int best_errors = n + 1;
-  LaneCut best;
-  if (!three) {  // cut before foot j, the far side left of it or right of it
-    for (int j = 1; j < n; ++j) {
-      const int near_before = j - far_before[j], far_after = far_total - far_before[j];
-      const int errors = std::min(near_before + far_after, far_before[j] + (n - j - far_after));
-      if (errors < best_errors) best_errors = errors, best = {feet[j].x, INT_MAX, false};
-    }
-    return {best_errors, best};
+  std::vector<int> out(feet.size() + 1, 0);
+  for (std::size_t j = 0; j < feet.size(); ++j) out[j + 1] = out[j] + ((feet[j].lateral > threshold) != high_is_near);
+  return out;
+}
+
+// The fewest misplaced columns, and the cut, of two runs, one left of the other: a cut before foot
+// j, the far side left of it or right of it.
+std::pair<int, LaneCut> two_runs(const std::vector<ColumnFoot>& feet, const std::vector<int>& far_before) {
+  const int n = static_cast<int>(feet.size()), far_total = far_before[n];
+  std::pair<int, LaneCut> best{n + 1, {}};
+  for (int j = 1; j < n; ++j) {
+    const int near_before = j - far_before[j], far_after = far_total - far_before[j];
+    const int errors = std::min(near_before + far_after, far_before[j] + (n - j - far_after));
+    if (errors < best.first) best = {errors, {feet[j].x, INT_MAX, false}};
   }
-  // The near run feet[j1, j2): misplaced = far ones inside + near ones outside = (j1 - 2
-  // far_before[j1]) + (2 far_before[j2] - j2) + n - far_total, the first term minimised over j1 < j2.
+  return best;
+}
+
+// The fewest misplaced columns, and the cut, of three runs, the near vehicle's feet[j1, j2) between
+// two of the far one's of at least 3 columns each: misplaced = far ones inside + near ones outside
+// = (j1 - 2 far_before[j1]) + (2 far_before[j2] - j2) + n - far_total, the first term minimised
+// over j1 < j2 as j2 grows.
+std::pair<int, LaneCut> three_runs(const std::vector<ColumnFoot>& feet, const std::vector<int>& far_before) {
+  const int n = static_cast<int>(feet.size()), far_total = far_before[n];
+  std::pair<int, LaneCut> best{n + 1, {}};
   int best_left = INT_MAX, best_j1 = 0;
   for (int j2 = 4; j2 <= n - 3; ++j2) {
     const int j1 = j2 - 1;
     if (j1 - 2 * far_before[j1] < best_left) best_left = j1 - 2 * far_before[j1], best_j1 = j1;
     const int errors = best_left + 2 * far_before[j2] - j2 + n - far_total;
-    if (errors < best_errors) best_errors = errors, best = {feet[best_j1].x, feet[j2].x, true};
+    if (errors < best.first) best = {errors, {feet[best_j1].x, feet[j2].x, true}};
   }
-  return {best_errors, best};
+  return best;
 }
 
 // Where a blob's lower outline parts into two vehicles in different lanes, or nullopt. The sides
@@ -401,7 +408,7 @@ std::pair<int, LaneCut> runs_cut(const std::vector<ColumnFoot>& feet, double thr
 // (the tracker's merges handle it).
 std::optional<LaneCut> lane_cut(std::vector<ColumnFoot> feet, double gap, double camera_lateral) {
   if (const auto threshold = lane_threshold(feet, gap, false)) {
-    const auto [errors, cut] = runs_cut(feet, *threshold, camera_lateral, false);
+    const auto [errors, cut] = two_runs(feet, far_before(feet, *threshold, camera_lateral));
     if (errors <= static_cast<int>(feet.size()) / 10) return cut;
   }
   const auto end_columns = static_cast<std::ptrdiff_t>(feet.size() / 20);
@@ -409,9 +416,9 @@ std::optional<LaneCut> lane_cut(std::vector<ColumnFoot> feet, double gap, double
   feet.erase(feet.begin(), feet.begin() + end_columns);
   const auto threshold = lane_threshold(feet, gap, true);
   if (!threshold) return std::nullopt;
-  const int errors2 = runs_cut(feet, *threshold, camera_lateral, false).first;
-  const auto [errors3, cut3] = runs_cut(feet, *threshold, camera_lateral, true);
-  if (errors3 < errors2 && errors3 <= static_cast<int>(feet.size()) / 10) return cut3;
+  const auto far = far_before(feet, *threshold, camera_lateral);
+  const auto [errors, cut] = three_runs(feet, far);
+  if (errors < two_runs(feet, far).first && errors <= static_cast<int>(feet.size()) / 10) return cut;
   return std::nullopt;
 }
 
@@ -448,6 +455,12 @@ void give_far_body_back(cv::Mat& labels, const cv::Mat& frame, const cv::Rect& n
   }
 }
 
+// Component i's bounding box from cv::connectedComponentsWithStats' stats.
+cv::Rect component_box(const cv::Mat& stats, int i) {
+  return {stats.at<int>(i, cv::CC_STAT_LEFT), stats.at<int>(i, cv::CC_STAT_TOP), stats.at<int>(i, cv::CC_STAT_WIDTH),
+          stats.at<int>(i, cv::CC_STAT_HEIGHT)};
+}
+
 // The pieces of component `label`'s pixels within `box` of at least min_area pixels, the first
 // keeping the label and the others each under a new one, with their boxes; the component whole
 // when it is in one such piece. (Smaller pieces keep the label: blob_of() takes the longest
@@ -459,11 +472,9 @@ std::vector<std::pair<int, cv::Rect>> pieces_of(cv::Mat& labels, int label, cons
   std::vector<std::pair<int, cv::Rect>> out;
   for (int i = 1; i < n; ++i) {
     if (stats.at<int>(i, cv::CC_STAT_AREA) < min_area) continue;
-    const cv::Rect at(stats.at<int>(i, cv::CC_STAT_LEFT), stats.at<int>(i, cv::CC_STAT_TOP),
-                      stats.at<int>(i, cv::CC_STAT_WIDTH), stats.at<int>(i, cv::CC_STAT_HEIGHT));
     const int piece_label = out.empty() ? label : next_label++;
     labels(box).setTo(piece_label, piece == i);
-    out.emplace_back(piece_label, at + box.tl());
+    out.emplace_back(piece_label, component_box(stats, i) + box.tl());
   }
   if (out.size() <= 1) return {{label, box}};
   return out;
@@ -536,8 +547,7 @@ std::vector<Blob> find_blobs(const cv::Mat& mask, const cv::Mat& frame, const Ve
   std::vector<Blob> out;
   for (int i = 1; i < n; ++i) {
     if (stats.at<int>(i, cv::CC_STAT_AREA) < p.min_area) continue;
-    const cv::Rect component(stats.at<int>(i, cv::CC_STAT_LEFT), stats.at<int>(i, cv::CC_STAT_TOP),
-                             stats.at<int>(i, cv::CC_STAT_WIDTH), stats.at<int>(i, cv::CC_STAT_HEIGHT));
+    const cv::Rect component = component_box(stats, i);
     auto whole = blob_of(labels, i, component, camera);
     if (!whole) continue;
     const auto parts = split_across_lanes(labels, frame, i, component, camera, p.lane_split_gap, 4 * p.min_area, next_label);
