@@ -1,9 +1,11 @@
 // apps::measure_vehicles on rendered frames: vehicles abreast in adjacent lanes cut apart (the lane
-// cut, with its colour step), a lone vehicle kept whole, a still blob not reported (min_travel).
+// cut, with its colour step), a lone vehicle kept whole, a still blob not reported (min_travel), a
+// vehicle hidden for longer than a track coasts reported once (stitch_gap).
 // The frames are drawn with OpenCV alone (road_scene.hpp), independently of vtrack's camera.
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -33,6 +35,7 @@ struct PlacedVehicle {
   double W, H, L;  // m
   cv::Scalar colour;
   double ahead = 0.0;  // m its front is ahead of the others' along the road
+  int hidden_from = 0, hidden_to = 0;  // frames [from, to) it is not drawn (behind a wall the road's colour)
 };
 
 class VehiclePipelineTest : public ScratchDirTest {
@@ -49,6 +52,7 @@ class VehiclePipelineTest : public ScratchDirTest {
       cv::Mat frame(c.image_height, c.image_width, CV_8UC3, cv::Scalar(110, 110, 110));
       for (const auto& v : vehicles) {
         if (k < 8) break;
+        if (k >= v.hidden_from && k < v.hidden_to) continue;
         const Eigen::Vector3d origin = v.x0 * lateral + (75.0 - 2.0 * (k - 8) - v.ahead) * along;
         frame.setTo(v.colour, road_scene::render_mask(c, road_scene::cuboid(origin, lateral, along, v.W, v.H, v.L)));
       }
@@ -59,10 +63,19 @@ class VehiclePipelineTest : public ScratchDirTest {
     return folder.string();
   }
 
-  static apps::VehiclePipelineResult run(const std::string& frames, double lane_split_gap) {
+  static apps::VehiclePipelineResult run(const std::string& frames, double lane_split_gap,
+                                         double stitch_gap = apps::VehicleBlobParams{}.stitch_gap) {
     apps::VehiclePipelineParams params;
     params.blobs.lane_split_gap = lane_split_gap;
+    params.blobs.stitch_gap = stitch_gap;
     return apps::measure_vehicles(frames, models::Camera(side_camera()), models::table1_vehicle_models(), params);
+  }
+
+  // The distinct ids of a result's track rows.
+  static std::set<std::uint64_t> row_ids(const apps::VehiclePipelineResult& result) {
+    std::set<std::uint64_t> ids;
+    for (const auto& r : result.tracks) ids.insert(r.id);
+    return ids;
   }
 
   // The longer of a result's two vehicles (dimensions = (W, H, L)).
@@ -138,4 +151,43 @@ TEST_F(VehiclePipelineTest, ALoneVehicleIsNeverCut) {
     EXPECT_EQ(estimated, 1);
     fs::remove_all(frames);
   }
+}
+
+TEST_F(VehiclePipelineTest, AVehicleHiddenLongerThanATrackCoastsIsOneVehicle) {
+  // A car in lane 0 passes behind a wall the road's colour in frames 22-31: ten frames, twice the
+  // frames a track coasts (lost_memory), so its track ends and a new one starts when it shows
+  // again. Without stitching: two vehicles. With it: one, seen from the first of its frames to the
+  // last, every row under its id, estimated light at its length from both tracks' outlines.
+  const auto frames = write_frames({{0.85, 1.8, 1.5, 4.5, cv::Scalar(60, 60, 200), 0.0, 22, 32}});
+  const auto apart = run(frames, apps::VehicleBlobParams{}.lane_split_gap, 0.0);
+  ASSERT_EQ(apart.vehicles.size(), 2u);
+  EXPECT_LT(apart.vehicles[0].last_frame, 23);
+  EXPECT_GT(apart.vehicles[1].first_frame, 32);
+  const auto stitched = run(frames, apps::VehicleBlobParams{}.lane_split_gap);
+  ASSERT_EQ(stitched.vehicles.size(), 1u);
+  const auto& car = stitched.vehicles[0];
+  EXPECT_EQ(car.first_frame, apart.vehicles[0].first_frame);
+  EXPECT_EQ(car.last_frame, apart.vehicles[1].last_frame);
+  EXPECT_EQ(car.frames_seen, apart.vehicles[0].frames_seen + apart.vehicles[1].frames_seen);
+  EXPECT_EQ(row_ids(stitched), std::set<std::uint64_t>{static_cast<std::uint64_t>(car.vehicle_id)});
+  // A row for every view: apart, the first track's road line put it inside the second's first box
+  // (a hidden view: no row); stitched, it is that box's own vehicle.
+  EXPECT_EQ(stitched.tracks.size(), static_cast<std::size_t>(car.frames_seen));
+  EXPECT_LT(apart.tracks.size(), stitched.tracks.size());
+  ASSERT_TRUE(car.valid);
+  EXPECT_FALSE(car.heavy);
+  EXPECT_NEAR(car.dimensions(2), 4.5, 1.2);
+}
+
+TEST_F(VehiclePipelineTest, AnotherVehicleAfterAGapDoesNotContinueATrack) {
+  // The car vanishes behind the wall in frame 22 for good; from frame 28 a van shows in lane 1,
+  // 20 m behind where the car would be: within the gap stitching bridges, but on another road
+  // line, so it stays a vehicle of its own.
+  const auto frames = write_frames({{0.85, 1.8, 1.5, 4.5, cv::Scalar(60, 60, 200), 0.0, 22, 48},
+                                    {4.5, 2.0, 2.2, 5.5, cv::Scalar(60, 200, 60), -20.0, 0, 28}});
+  const auto result = run(frames, apps::VehicleBlobParams{}.lane_split_gap);
+  ASSERT_EQ(result.vehicles.size(), 2u);
+  EXPECT_LT(result.vehicles[0].last_frame, 23);
+  EXPECT_GE(result.vehicles[1].first_frame, 29);
+  EXPECT_EQ(row_ids(result).size(), 2u);
 }

@@ -165,7 +165,8 @@ const core::ParameterTable<VehicleBlobParams>& VehicleBlobParams::table() {
                             .add("hold_views", &P::hold_views)
                             .add("lost_memory", &P::lost_memory)
                             .add("confirm_frames", &P::confirm_frames)
-                            .add("min_travel", &P::min_travel);
+                            .add("min_travel", &P::min_travel)
+                            .add("stitch_gap", &P::stitch_gap);
   return t;
 }
 
@@ -191,6 +192,7 @@ void validate(const VehicleBlobParams& p) {
   require(p.lost_memory >= 0 && p.lost_memory <= 1000, "lost_memory", p.lost_memory, "in [0, 1000]");
   require(p.min_travel >= 0.0 && std::isfinite(p.min_travel), "min_travel", p.min_travel,
           "a finite number of metres >= 0 (0: off)");
+  require(p.stitch_gap >= 0.0 && p.stitch_gap <= 60.0, "stitch_gap", p.stitch_gap, "seconds in [0, 60]");
   require(p.confirm_frames >= 1 && p.confirm_frames <= 1000, "confirm_frames", p.confirm_frames, "in [1, 1000]");
 }
 
@@ -907,6 +909,20 @@ std::set<std::pair<int, long long>> hidden_views(const std::vector<const Passage
   return out;
 }
 
+// The mean intersection over union of `views`' boxes with the boxes a vehicle moving along road
+// line `line` has at their frames, seen at view `anchor` (road_box(), as predicted() coasts a
+// track); 0 when the line has no velocity.
+double line_overlap(const GroundLine& line, const TrackView& anchor, const std::vector<const TrackView*>& views,
+                    const models::Camera& camera) {
+  if (!line.has_velocity() || views.empty()) return 0.0;
+  double sum = 0.0;
+  for (const TrackView* v : views) {
+    const auto box = road_box(line, anchor.frame, cv::Rect2d(anchor.blob.box), anchor.blob.foot, v->frame, camera);
+    if (box) sum += overlap(*box, cv::Rect2d(v->blob.box));
+  }
+  return sum / static_cast<double>(views.size());
+}
+
 // One outline to an estimator; a blob reaching above the horizon (sky, a gantry's structure) is no
 // vehicle on the road and is skipped.
 void update(filters::VehicleDimensionEstimator& estimator, int id, long long frame, const Blob& blob) {
@@ -942,11 +958,15 @@ void update(filters::VehicleDimensionEstimator& estimator, int id, long long fra
 // bounded -- a vehicle may stop in view, a ghost of the background stay for minutes, and the
 // longest passage seen so far is no bound: on tests/test_vehicle_estimator.py's gantry stream a
 // 481-frame track followed passages of at most 107 frames -- so every view is held to the end.
+// An ended track also waits while a track that may continue it (predecessor(): one of at most C
+// frames starting within stitch_gap of its end) runs: at most stitch_gap + C frames, within the
+// bound above when h C >= stitch_gap, as with the defaults.
 class HeldViews {
  public:
   HeldViews(const VehicleBlobParams& p, double fps, const cv::Size& image, filters::VehicleDimensionEstimator& own,
             filters::VehicleDimensionEstimator& joined)
-      : p_(p), cap_(p.hidden_max_passage * fps), image_(image), own_(own), joined_(joined) {}
+      : p_(p), cap_(p.hidden_max_passage * fps), stitch_(p.stitch_gap * fps), image_(image), own_(own),
+        joined_(joined) {}
 
   // A blob that continued or started track `id` at `frame`.
   void add(int id, long long frame, bool joined, const Blob& blob) {
@@ -966,14 +986,14 @@ class HeldViews {
     for (int id : running_) {
       if (may_hide(views_.at(id))) frontier = std::min(frontier, static_cast<double>(views_.at(id).front().frame));
     }
-    finalise(frontier - p_.hidden_horizon * cap_, out);
+    finalise(frontier - p_.hidden_horizon * cap_, k + 1, out);
     release_passages(k + 1);
   }
 
   // The end of the video: every track has ended. `out` is sorted by id.
   void finish(std::vector<filters::VehicleEstimate>& out) {
     end_tracks({});
-    finalise(std::numeric_limits<double>::infinity(), out);
+    finalise(std::numeric_limits<double>::infinity(), std::numeric_limits<long long>::max(), out);
     std::sort(out.begin(), out.end(), [](const auto& x, const auto& y) { return x.vehicle_id < y.vehicle_id; });
   }
 
@@ -981,7 +1001,12 @@ class HeldViews {
   // vehicle's box).
   bool keeps(const TrackRow& r) const {
     const int id = static_cast<int>(r.id);
-    return !unconfirmed_.count(id) && !hidden_.count({id, r.frame});
+    return !unconfirmed_.count(id) && !hidden_.count({vehicle_of(id), r.frame});
+  }
+  // The vehicle a track's rows belong to: the track it continues (predecessor()), else itself.
+  int vehicle_of(int track) const {
+    const auto it = continued_.find(track);
+    return it == continued_.end() ? track : it->second;
   }
   std::size_t peak() const { return peak_; }
   long long views_seen() const { return views_seen_; }
@@ -1016,7 +1041,12 @@ class HeldViews {
       }
       auto& vs = views_.at(*it);
       if (static_cast<int>(vs.size()) >= p_.confirm_frames && !ghost(vs)) {
-        ended_.emplace(*it, passage_of(*it, vs));
+        const Passage passage = passage_of(*it, vs);
+        if (const int earlier = predecessor(passage)) {
+          continue_passage(earlier, *it);
+        } else {
+          ended_.emplace(*it, passage);
+        }
       } else {
         unconfirmed_.insert(*it);
         held_ -= vs.size();
@@ -1026,12 +1056,77 @@ class HeldViews {
     }
   }
 
-  // Finalises the ended tracks whose last view is below `frontier`, in order of id.
-  void finalise(double frontier, std::vector<filters::VehicleEstimate>& out) {
+  // The ended track, not finalised, that passage b (a track just ended) continues (header:
+  // stitch_gap), or 0: one that ended at most stitch_gap before b's first view and moved along one
+  // road line with it. The line is fitted to both tracks' ground points (a short track's own line
+  // may rest on a few feet, one of them a merged blob's; the two together span the gap); from the
+  // earlier one's last view with a ground point it must predict b's first kNearGap boxes, and from
+  // b's first such view the earlier one's last kNearGap, each with a mean overlap of kMinOverlap or
+  // more (line_overlap()). Of several, the one whose smaller mean is the largest.
+  int predecessor(const Passage& b) const {
+    constexpr std::size_t kNearGap = 5;
+    constexpr double kMinOverlap = 0.5;
+    if (stitch_ <= 0.0 || !may_hide(*b.views) || !b.first_anchor) return 0;
+    const auto& bv = *b.views;
+    const long long first = bv.front().frame;
+    std::vector<const TrackView*> after;
+    for (std::size_t j = 0; j < std::min(kNearGap, bv.size()); ++j) after.push_back(&bv[j]);
+    int best = 0;
+    double best_overlap = kMinOverlap;
+    for (const auto& [id, a] : ended_) {
+      const auto& av = *a.views;
+      const long long last = av.back().frame;
+      if (finalised_.count(id) || !a.last_anchor || last >= first || static_cast<double>(first - last) > stitch_) {
+        continue;
+      }
+      std::vector<const TrackView*> before;
+      for (std::size_t j = av.size() - std::min(kNearGap, av.size()); j < av.size(); ++j) before.push_back(&av[j]);
+      GroundLine both;
+      for (const auto* vs : {&av, &bv}) {
+        for (const auto& v : *vs) {
+          if (v.blob.has_ground) both.add(v.frame, v.blob.ground);
+        }
+      }
+      const double agree = std::min(line_overlap(both, *a.last_anchor, after, own_.camera()),
+                                    line_overlap(both, *b.first_anchor, before, own_.camera()));
+      if (agree >= best_overlap) best = id, best_overlap = agree;
+    }
+    return best;
+  }
+
+  // Whether an ended track may still be continued (predecessor()) by a running track or one
+  // starting from frame `next` on. Only a track of at most C frames continues one (a longer one has
+  // stopped in view, or is a ghost), so an ended track waits at most C frames, and the answer is
+  // the same when every view is held to the end.
+  bool awaits_continuation(const std::vector<TrackView>& vs, long long next) const {
+    if (stitch_ <= 0.0) return false;
+    const long long last = vs.back().frame;
+    if (static_cast<double>(next - last) <= stitch_) return true;
+    return std::any_of(running_.begin(), running_.end(), [&](int id) {
+      const auto& rv = views_.at(id);
+      const long long first = rv.front().frame;
+      return first > last && static_cast<double>(first - last) <= stitch_ && may_hide(rv);
+    });
+  }
+
+  // Track `later`'s views become the ended track `earlier`'s, its passage one over both.
+  void continue_passage(int earlier, int later) {
+    auto& to = views_.at(earlier);
+    auto& from = views_.at(later);
+    to.insert(to.end(), std::make_move_iterator(from.begin()), std::make_move_iterator(from.end()));
+    views_.erase(later);
+    ended_.at(earlier) = passage_of(earlier, to);  // its anchors point into the grown vector
+    continued_[later] = earlier;
+  }
+
+  // Finalises the ended tracks whose last view is below `frontier` and that no track may still
+  // continue (awaits_continuation(); `next`: the next frame), in order of id.
+  void finalise(double frontier, long long next, std::vector<filters::VehicleEstimate>& out) {
     std::vector<const Passage*> targets, passages;
     for (const auto& [id, passage] : ended_) {
       if (may_hide(*passage.views)) passages.push_back(&passage);
-      if (!finalised_.count(id) && static_cast<double>(passage.views->back().frame) < frontier) {
+      if (!finalised_.count(id) && static_cast<double>(passage.views->back().frame) < frontier &&
+          !awaits_continuation(*passage.views, next)) {
         targets.push_back(&passage);
       }
     }
@@ -1088,7 +1183,8 @@ class HeldViews {
   }
 
   const VehicleBlobParams& p_;
-  double cap_;  // C, frames (0: none)
+  double cap_;     // C, frames (0: none)
+  double stitch_;  // stitch_gap, frames (0: off)
   cv::Size image_;
   filters::VehicleDimensionEstimator& own_;
   filters::VehicleDimensionEstimator& joined_;
@@ -1098,6 +1194,7 @@ class HeldViews {
   std::set<int> finalised_;                      // of ended_: estimated, outlines released
   std::set<int> unconfirmed_;                    // ended in fewer than confirm_frames views
   std::set<std::pair<int, long long>> hidden_;   // hidden views of finalised tracks (their rows go)
+  std::map<int, int> continued_;                 // a track -> the earlier one it continues (predecessor())
   std::size_t held_ = 0, peak_ = 0;              // views with their outlines
   long long views_seen_ = 0;
 };
@@ -1204,6 +1301,7 @@ VehiclePipelineResult measure_vehicles(const std::string& video, const models::C
   auto& rows = result.tracks;
   rows.erase(std::remove_if(rows.begin(), rows.end(), [&](const TrackRow& r) { return !views.keeps(r); }),
              rows.end());
+  for (auto& r : rows) r.id = static_cast<std::uint64_t>(views.vehicle_of(static_cast<int>(r.id)));
   result.views = views.views_seen();
   result.peak_held_views = static_cast<long long>(views.peak());
   if (writer) writer->commit();

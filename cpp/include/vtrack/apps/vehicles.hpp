@@ -133,6 +133,19 @@ void write_vehicles_csv(const std::string& path, const std::vector<filters::Vehi
 // blob: one track, the estimator fed a two-vehicle outline (a limitation; benchmarks/vehicles.py
 // counts it). A track matched in fewer than confirm_frames frames is not reported (a flicker of
 // the background).
+// A vehicle's track broken by a merge longer than lost_memory (a car coasting behind a bus, a
+// clump that parts) is taken up by a new track when the vehicle shows again: two vehicles
+// reported for one, each with part of its outlines (benchmarks/vehicles.py, Table 3: most of the
+// extra vehicles). So a confirmed track that starts at most stitch_gap seconds after one ended is
+// that track's continuation when one road line, fitted to both tracks' ground points and run
+// across the gap from each one's view nearest it (as predicted() coasts a track), predicts the
+// other's boxes next to the gap (its first or last five views) with a mean intersection over
+// union of 0.5 or more; of several, the one that agrees best. Its views, rows and outlines become
+// the earlier track's (src/apps/vehicles.cpp, HeldViews::predecessor()). A merged blob of two
+// vehicles has a box far larger than either's, and a vehicle following in the same lane is metres
+// off the line, so neither continues another vehicle's track (0.3 instead of 0.5 stitched more,
+// and lost vehicles and heavies: benchmarks/vehicles.py). (The rendered video, drawn as the frames
+// come, shows the later track's own id.) 0 = off.
 // Nor is a track whose ground points lie within min_travel metres of one another along the road:
 // a ghost of the background (road uncovered where something stood while the background was
 // learnt, a patch of changed light). A vehicle enters the view moving, so even one that stops in
@@ -159,6 +172,7 @@ struct VehicleBlobParams {
   int lost_memory = 5;                // frames a track may go unmatched (it coasts through merges)
   int confirm_frames = 3;             // matched frames for a track to be a vehicle
   double min_travel = 1.0;            // metres along the road a vehicle's track covers (above); 0 = off
+  double stitch_gap = 2.0;            // seconds: a track continuing one that ended (above); 0 = off
 
   static const core::ParameterTable<VehicleBlobParams>& table();
 };
