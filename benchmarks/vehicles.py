@@ -37,7 +37,8 @@ whose image boxes its boxes overlap most (IoU > 0.5) over its frames; "found" = 
 vehicles with a visible frame that some reported vehicle matches; "found of those seen apart" counts
 only the vehicles whose image box is, in 5 frames or more, clear of every other vehicle's while they
 are fully in view and 90 % visible (seen_apart(); the others share one blob with another vehicle for
-their whole passage, which no silhouette can part). Time per frame is the whole pipeline's. Table 3 says what the reported vehicles beyond one per ground-truth vehicle are.
+their whole passage, which the silhouettes alone can seldom part). Time per frame is the whole
+pipeline's. Table 3 says what the reported vehicles beyond one per ground-truth vehicle are.
 
 Issue 13's tuning log (the blob tracker's road-plane prediction, this session): diagnosed on the
 video scenes of seed 100 with 20 vehicles on mast_high, gantry and side (the "tuning split");
@@ -846,7 +847,8 @@ def from_observations(args):
 # A vehicle "seen apart" (Table 2): in SEEN_APART_FRAMES frames or more fully in view, at least
 # SEEN_APART_VISIBLE of it not hidden, and its image box overlapping no other vehicle's box. One
 # never seen apart is in one blob with others for its whole passage (abreast at the same speed,
-# stacked in the same image columns, behind a bus): a property of the scene, not of the method.
+# stacked in the same image columns, behind a bus): a property of the scene, not of the method,
+# which finds some of them all the same (a lane cut, a track that emerges).
 SEEN_APART_FRAMES = 5
 SEEN_APART_VISIBLE = 0.9
 
