@@ -698,8 +698,8 @@ seen apart / light / heavy / reported, main (5eb66eb's defaults + the lane cut) 
   (97.2 %), reported 288 -> 284; the found, light and heavy answers identical with and without.
 The lights called heavy are one tall van (3500's van 3, 2.07 x 2.73 x 5.70 m) seen by two cameras,
 its track's outlines running into the vehicle behind it (estimated 9.7 m long); the heavy called
-light is 3700's articulated lorry on pole_hd. Still below the bar: found (97.5 %, every miss but
-four shares one blob with another vehicle all along) and heavy (97.2 %).
+light is 3700's articulated lorry on pole_hd. Still below the bar: found (97.5 %; two of the six
+misses share one blob with another vehicle all along, four were seen apart) and heavy (97.2 %).
 """
 
 import argparse
