@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <opencv2/imgcodecs.hpp>
@@ -190,4 +191,24 @@ TEST_F(VehiclePipelineTest, AnotherVehicleAfterAGapDoesNotContinueATrack) {
   EXPECT_LT(result.vehicles[0].last_frame, 23);
   EXPECT_GE(result.vehicles[1].first_frame, 29);
   EXPECT_EQ(row_ids(result).size(), 2u);
+}
+
+TEST(VehicleBlobSizes, FollowTheFocalLength) {
+  // Auto sizes (0): the closing's side is 3 px x f / 900 rounded to an odd number (1 = off), the
+  // smallest blob 150 px x (f / 900)^2; sizes given by the user are kept at any focal length.
+  const apps::VehicleBlobParams automatic;
+  for (const auto& [focal, closing, area] : {std::tuple{900.0, 3, 150}, std::tuple{1200.0, 5, 267},
+                                             std::tuple{450.0, 3, 38}, std::tuple{300.0, 1, 17},
+                                             std::tuple{1800.0, 7, 600}}) {
+    SCOPED_TRACE(focal);
+    const auto p = apps::blob_sizes_for(automatic, focal);
+    EXPECT_EQ(p.blob_closing, closing);
+    EXPECT_EQ(p.min_area, area);
+  }
+  apps::VehicleBlobParams given;
+  given.blob_closing = 9;
+  given.min_area = 40;
+  const auto p = apps::blob_sizes_for(given, 300.0);
+  EXPECT_EQ(p.blob_closing, 9);
+  EXPECT_EQ(p.min_area, 40);
 }

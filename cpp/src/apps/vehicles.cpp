@@ -197,7 +197,7 @@ void validate(const VehicleBlobParams& p) {
 }
 
 VehicleBlobParams blob_sizes_for(VehicleBlobParams p, double focal_px) {
-  constexpr double kReferenceFocal = 900.0, kClosing = 5.0, kMinArea = 150.0;
+  constexpr double kReferenceFocal = 900.0, kClosing = 3.0, kMinArea = 150.0;
   const double scale = focal_px / kReferenceFocal;
   if (p.blob_closing == 0) {
     const int side = static_cast<int>(std::lround(kClosing * scale));
