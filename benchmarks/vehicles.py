@@ -700,6 +700,42 @@ The lights called heavy are one tall van (3500's van 3, 2.07 x 2.73 x 5.70 m) se
 its track's outlines running into the vehicle behind it (estimated 9.7 m long); the heavy called
 light is 3700's articulated lorry on pole_hd. Still below the bar: found (97.5 %; two of the six
 misses share one blob with another vehicle all along, four were seen apart) and heavy (97.2 %).
+
+Session 17. The auto blob closing, 3 px at f = 900 instead of 5 (header: blob_sizes_for()). Per-scene
+runs with this file's matching, found / light / heavy / reported, 5 px -> 3 px:
+  tuning seeds (1200)             1195 962/965 225/230 1390  ->  1197 964/967 227/230 1390
+  dev seeds 2500-3700 (720)        700 561/567 130/133  827  ->   700 561/567 131/133  809
+On the tuning seeds it finds two cars beside other vehicles (mast_high and mast_low 1100) and gets
+three heavies right that the wider closing had joined with a neighbour (mast_high 1100 truck 33,
+mast_low 1100 articulated 21, mast_low 1500 truck 28) and a van (mast_high 1100 van 32, 12.3 m long
+before); it loses a truck (mast_low 1100 truck 33, now light) and a car (side 300 car 23, now heavy).
+On the dev seeds pole_hd 3700's articulated lorry, a car-sized estimate with 5 px, is heavy (2.03 x
+4.04 x 10.59 m). The car beside the bus (pole_hd 3300) is still one blob with it at 5 px (f = 1200).
+Also tried: the outlines of a view that holds another vehicle's passage (hidden) used after the
+joined ones, not with them. That lorry's track was handed to a car entering the image as it left,
+and with the handed-over views, nearer, the resolution cut kept the car's outlines only (1.56 x
+1.47 x 4.25 m). Heavy on its own (2.65 x 4.75 x 5.32 m), no other answer changed on the 48 tuning
+and dev scenes; not kept for want of a test that reproduces the hand-over.
+
+Fresh seeds never run before, scored once after the choice above (`--video-only --video-vehicles
+40 --video-seed S --video-setups pole_hd far_side_right roadside_4x3`, S = 3900, 4100), found /
+seen apart / light / heavy / reported, and the naive 2-D baseline's light correct (heavy 100 %):
+  3900 pole_hd         39/40 39/39 32/32  7/7  47   baseline light  78.1 %
+  3900 far_side_right  39/40 39/39 31/31  8/8  44   baseline light  93.5 %
+  3900 roadside_4x3    40/40 39/39 31/32  8/8  45   baseline light  28.1 %
+  4100 pole_hd         38/40 37/37 26/28 10/10 41   baseline light  92.6 %
+  4100 far_side_right  40/40 40/40 29/30 10/10 47   baseline light 100.0 %
+  4100 roadside_4x3    37/40 36/37 27/27 10/10 47   baseline light  40.7 %
+  total  233/240 (97.1 %), seen apart 230/231 (99.6 %), light 176/180 (97.8 %), heavy 53/53 (100 %)
+(4100 pole_hd's light 27/28 as the table first printed it: a car found but never fully in view as one
+vehicle counted as light; it is counted wrong now, as by the per-scene runs, so 26/28.)
+Main (5 px) on the same scenes, per-scene runs: found 234, light 178/181, heavy 52/53, reported
+272 (3 px: 233, 176/180, 53/53, 271): 3900 roadside_4x3 van 31 (2.85 x 2.47 x 6.49 m) and 4100
+far_side_right car 11 are called heavy with 3 px, 4100 roadside_4x3 truck 13 is right, and that
+scene's car 1, never fully in view as one vehicle with 5 px, is not found. Over the 2160 vehicles
+of tuning, dev and fresh seeds: found +1, light -2, heavy +4. Still below the bar on the fresh
+seeds: found (97.1 %; a van and a car with a trailer on 4100 are missed by two cameras each) and
+light (97.8 %: two vans and a car called heavy, a car never fully in view as one vehicle).
 """
 
 import argparse
@@ -977,7 +1013,8 @@ def from_video(args):
                 gt = max(votes[e["vehicle_id"]].items(), key=lambda kv: kv[1])[0]
                 if gt not in matched or e["frames_used"] > matched[gt]["frames_used"]:
                     matched[gt] = e
-        pairs = [(truth[gt], e["valid"] and e["light_heavy"] == "heavy") for gt, e in matched.items()]
+        # A vehicle never fully in view has no class (None): wrong, light or heavy.
+        pairs = [(truth[gt], e["light_heavy"] == "heavy" if e["valid"] else None) for gt, e in matched.items()]
         la, ha, nl, nh = score(pairs)
         err = np.mean([np.abs([e["W"] - truth[g].W, e["H"] - truth[g].H, e["L"] - truth[g].L])
                        for g, e in matched.items() if e["valid"]], axis=0)
