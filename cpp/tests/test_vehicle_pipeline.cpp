@@ -1,6 +1,6 @@
 // apps::measure_vehicles on rendered frames: vehicles abreast in adjacent lanes cut apart (the lane
 // cut, with its colour step), a lone vehicle kept whole, a still blob not reported (min_travel), a
-// vehicle hidden for longer than a track coasts reported once (stitch_gap).
+// vehicle hidden for longer than a track coasts reported once (stitch_gap); the auto blob sizes.
 // The frames are drawn with OpenCV alone (road_scene.hpp), independently of vtrack's camera.
 #include <gtest/gtest.h>
 

@@ -157,13 +157,10 @@ void write_vehicles_csv(const std::string& path, const std::vector<filters::Vehi
 // length f (sqrt(fx fy) of K): an object at a given distance spans f / 900 times the pixels, so the
 // same physical gaps are closed and the same physical specks dropped at any resolution and lens.
 // Measured in benchmarks/vehicles.py (--video-scale): fixed pixel sizes lost vehicles at 0.5x.
-// The closing is 3 px at f = 900 (3 px for f = 450-1000, 5 px at f = 1200): it bridges the
-// background model's missed pixels inside a vehicle, but a wider one also fills the few pixels
-// between vehicles abreast or one behind the other, and the lane cut then reads too narrow a gap
-// between their lower outlines (a car beside a bus, 3 px apart, measured 0.65 m across the road
-// for a true 1.36 m under a 7 px closing). 5 px at f = 900 joined such pairs; off (1 px) lost a
-// bus and a truck on the f = 560 camera whose pieces only a closing joins
-// (benchmarks/vehicles.py: the values tried).
+// The closing (3 px for f = 450-1000, 5 px at f = 1200) bridges the pixels the background model
+// misses inside a vehicle; a wider one also fills the few pixels between two vehicles abreast, and
+// the lane cut then reads too narrow a gap between their lower outlines. None at all leaves a
+// heavy in pieces on a short focal length (benchmarks/vehicles.py: the values tried).
 struct VehicleBlobParams {
   double foreground_threshold = 0.5;  // y < this is foreground (y = the KDE background likelihood)
   int blob_closing = 0;               // pixels: 0 = auto (3 at f = 900, odd; above), 1 = off, else odd
