@@ -893,12 +893,10 @@ SEEN_APART_VISIBLE = 0.9
 
 def seen_apart(frames):
     """The vehicles seen apart, from {frame: [(id, box, fully in view and visible), ...]}."""
-    def apart(a, b):
-        return a[0] + a[2] <= b[0] or b[0] + b[2] <= a[0] or a[1] + a[3] <= b[1] or b[1] + b[3] <= a[1]
     count = defaultdict(int)
     for rows in frames.values():
         for vid, box, clear in rows:
-            if clear and all(apart(box, other) for o, other, _ in rows if o != vid):
+            if clear and all(iou(box, other) == 0.0 for o, other, _ in rows if o != vid):
                 count[vid] += 1
     return {vid for vid, n in count.items() if n >= SEEN_APART_FRAMES}
 
