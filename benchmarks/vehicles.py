@@ -738,6 +738,45 @@ bar on the fresh seeds: found (97.1 %; a van and a car with a trailer on 4100 ar
 cameras each, in one blob with their neighbours) and light (97.8 %: two vans and a car called
 heavy, their outlines running into a neighbour's -- 3900 roadside_4x3 van 31 estimated 0.93 m too
 wide, 45.7 m^3 against the 45 m^3 rule -- and a car never fully in view as one vehicle).
+
+Session 18. Traffic density: --video-mean-gap sets the generator's mean_gap and Table 2 prints the
+flow. The default scenes carry 2900-3400 vehicles/h over the 4 lanes (mean_gap 2.5 s + min_gap
+0.8 s per lane), about six times the paper's roads (2585 vehicles in over 5 hours). Fresh seeds
+never run before, scored once with main's defaults before anything was looked at (`--video-only
+--video-vehicles 40 --video-seed S --video-setups pole_hd far_side_right roadside_4x3`, S = 4300,
+4500), found / seen apart / light / heavy / reported, and the same vehicles spaced out
+(`--video-mean-gap 6`: 1500-1800 vehicles/h; the seed draws the same vehicles, lanes and speeds,
+ids in order of entry):
+                       default (~3000/h)                 mean_gap 6 (~1600/h)
+  4300 pole_hd         40/40 40/40 36/36 4/4 47          40/40 40/40 36/36 4/4 43
+  4300 far_side_right  40/40 38/38 36/36 4/4 45          40/40 40/40 36/36 4/4 43
+  4300 roadside_4x3    40/40 39/39 36/36 4/4 52          40/40 40/40 36/36 4/4 47
+  4500 pole_hd         39/40 39/40 33/33 6/6 52          40/40 40/40 34/34 6/6 44
+  4500 far_side_right  37/40 36/36 30/31 6/6 41          38/40 36/36 33/33 5/5 39
+  4500 roadside_4x3    40/40 38/38 34/34 5/6 48          40/40 40/40 34/34 6/6 49
+  total  236/240 (98.3 %), 230/231, 205/206 (99.5 %), 29/30 (96.7 %), 285;  spaced out 238/240
+  (99.2 %), 236/236, 209/209, 29/29, 265 (the two missed, spaced out, a car and an articulated lorry
+  on far_side_right 4500, each drive abreast of an articulated lorry in the next lane for their whole
+  passage). The naive 2-D baseline in the same runs, light correct at its oracle threshold (heavy
+  100 %): 4300 pole_hd 91.7 %, far_side_right 94.4 %, roadside_4x3 36.1 %; 4500 78.8, 93.5, 23.5 %.
+  MAE W H L (m) at the default density: 0.15-0.26, 0.06-0.18, 0.54-1.55.
+Over the four fresh pairs scored once (3100-4500, each with its session's main; 960 vehicles):
+found 936/960 (97.5 %), light 755/762 (99.1 %), heavy 171/174 (98.3 %). Half the traffic takes
+found and heavy over the bar on these 240 vehicles; at the default density they stay under it.
+The heavy called light, roadside_4x3 4500 truck 6 (2.47 x 3.23 x 11.69 m; diagnosed after the
+score, so seeds 4300/4500 are dev now): it overtakes a car with a trailer and a car in the next
+lane, far and small; the lane cut finds their gap (two runs, no column misplaced) but their part,
+~250 px, is under the parts' minimum of 4 x min_area (363 px at f = 700), so the blob stays whole,
+its views hold the cars' passages (hidden views, to the fallback estimator) and one frame is used:
+2.12 x 2.91 x 7.06 m. Spaced out, it is right.
+
+Tried and not kept: parts of a lane cut down to min_area (1x instead of 4x). Per-scene runs with
+this file's matching on the dev seeds 3900-4500 (12 scenes, 480 vehicles), main -> 1x: found 469 ->
+471 (pole_hd 3900 truck 3, far_side_right 4500 car 2), lights wrong 5 -> 5 (roadside_4x3 3900 van
+31 right, pole_hd 4300 van 3 wrong: 4.08 m wide), heavies wrong 1 -> 2 (roadside_4x3 4500 truck 6
+right; roadside_4x3 3900 truck 30 and far_side_right 4500 articulated lorry 22 called light,
+estimated 1.83 x 1.59 x 1.95 m and 1.28 x 2.44 x 11.30 m), reported 556 -> 617 (+11 %); tuning gantry 100 the same answers, 51 -> 54 reports.
+More small cuts find a vehicle and lose a heavy, as the wider cuts of session 15 did.
 """
 
 import argparse
