@@ -4,7 +4,8 @@ on generated road scenes (vtrack.synthetic_road), per method.
 Usage: python benchmarks/vehicles.py [--vehicles N] [--seed S] [--step K] [--noise PX ...]
                                      [--video-vehicles M] [--video-setups NAME ...] [--video-seed S2]
                                      [--video-scale F] [--video-set NAME=VALUE ...]
-                                     [--video-class-mix CLASS=SHARE ...] [--scene-dir DIR] [--video-only]
+                                     [--video-class-mix CLASS=SHARE ...] [--video-mean-gap SECONDS]
+                                     [--scene-dir DIR] [--video-only]
 
 From observations: for every camera set-up of vtrack.synthetic_road, a scene of N vehicles (seed
 S, the generator's class mix: cars, vans, motorbikes, cars with trailers, trucks, articulated
@@ -775,8 +776,9 @@ this file's matching on the dev seeds 3900-4500 (12 scenes, 480 vehicles), main 
 471 (pole_hd 3900 truck 3, far_side_right 4500 car 2), lights wrong 5 -> 5 (roadside_4x3 3900 van
 31 right, pole_hd 4300 van 3 wrong: 4.08 m wide), heavies wrong 1 -> 2 (roadside_4x3 4500 truck 6
 right; roadside_4x3 3900 truck 30 and far_side_right 4500 articulated lorry 22 called light,
-estimated 1.83 x 1.59 x 1.95 m and 1.28 x 2.44 x 11.30 m), reported 556 -> 617 (+11 %); tuning gantry 100 the same answers, 51 -> 54 reports.
-More small cuts find a vehicle and lose a heavy, as the wider cuts of session 15 did.
+estimated 1.83 x 1.59 x 1.95 m and 1.28 x 2.44 x 11.30 m), reported 556 -> 617 (+11 %); tuning
+gantry 100 the same answers, 51 -> 54 reports. More small cuts find a vehicle and lose a heavy, as
+the wider cuts of session 15 did.
 """
 
 import argparse
