@@ -10,6 +10,7 @@
 
 #include "vtrack/core/errors.hpp"
 #include "vtrack/core/random.hpp"
+#include "vtrack/core/weights.hpp"
 #include "vtrack/filters/assign.hpp"
 
 using namespace vtrack;
@@ -17,7 +18,7 @@ using namespace vtrack::assign;
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using vtrack::core::kInf;
 
 // Costs of every feasible assignment (each row a distinct column, no +inf), sorted: the
 // independent reference Murty must reproduce.

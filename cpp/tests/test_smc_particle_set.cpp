@@ -12,6 +12,7 @@
 #include "vtrack/core/errors.hpp"
 #include "vtrack/core/random.hpp"
 #include "vtrack/core/resampling.hpp"
+#include "vtrack/core/weights.hpp"
 #include "vtrack/smc/particle_set.hpp"
 
 using namespace vtrack;
@@ -19,7 +20,7 @@ using smc::ParticleSet;
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using vtrack::core::kInf;
 
 ParticleSet<double> random_set(core::Rng& rng, Eigen::Index n, Eigen::Index d) {
   Eigen::MatrixXd x(n, d);

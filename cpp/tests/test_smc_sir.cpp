@@ -13,6 +13,7 @@
 
 #include "vtrack/core/errors.hpp"
 #include "vtrack/core/gaussian.hpp"
+#include "vtrack/core/weights.hpp"
 #include "vtrack/models/linear_gaussian.hpp"
 #include "vtrack/models/linear_gaussian_likelihood.hpp"
 #include "vtrack/models/motion.hpp"
@@ -23,7 +24,7 @@ using models::StatesView;
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using vtrack::core::kInf;
 
 // A 2-D constant-velocity target seen in position with noise R = 4 I.
 struct Scenario {

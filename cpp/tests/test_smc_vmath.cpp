@@ -9,6 +9,7 @@
 #include "vtrack/core/lane_rng.hpp"
 #include "vtrack/core/random.hpp"
 #include "vtrack/core/vmath.hpp"
+#include "vtrack/core/weights.hpp"
 #include "distributions.hpp"
 
 using namespace vtrack::core;
@@ -18,7 +19,7 @@ using vtrack::test_reference::normal_cdf;
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using vtrack::core::kInf;
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 }  // namespace

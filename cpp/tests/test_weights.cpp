@@ -7,7 +7,7 @@
 #include "vtrack/core/weights.hpp"
 
 using namespace vtrack::core;
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using vtrack::core::kInf;
 
 TEST(LogSumExp, AgreesWithTheNaiveSumWhereThatIsSafe) {
   Eigen::VectorXd x(4);

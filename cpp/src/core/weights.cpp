@@ -9,7 +9,6 @@
 namespace vtrack::core {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 void require_no_nan(const Eigen::Ref<const Eigen::VectorXd>& x, const char* name) {
   for (Eigen::Index i = 0; i < x.size(); ++i) {

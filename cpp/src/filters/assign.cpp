@@ -12,11 +12,12 @@
 
 #include "vtrack/core/errors.hpp"
 #include "vtrack/core/interrupt.hpp"
+#include "vtrack/core/weights.hpp"
 
 namespace vtrack::assign {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using core::kInf;
 
 std::string shape_string(const Eigen::Ref<const Eigen::MatrixXd>& cost) {
   return "(" + std::to_string(cost.rows()) + ", " + std::to_string(cost.cols()) + ")";

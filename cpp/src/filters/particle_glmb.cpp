@@ -18,7 +18,7 @@
 namespace vtrack::filters {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using core::kInf;
 
 // Lower Cholesky factor of a covariance that must be positive definite; `what` names it.
 Eigen::MatrixXd cholesky_of(const Eigen::MatrixXd& cov, const std::string& what) {

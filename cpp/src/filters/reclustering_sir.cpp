@@ -9,11 +9,12 @@
 #include "vtrack/core/errors.hpp"
 #include "vtrack/core/limits.hpp"
 #include "vtrack/core/vmath.hpp"
+#include "vtrack/core/weights.hpp"
 
 namespace vtrack::filters {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using core::kInf;
 constexpr double kPi = 3.14159265358979323846;
 
 const ReclusteringSirParams& validated(const ReclusteringSirParams& p) {

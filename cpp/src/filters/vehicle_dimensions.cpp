@@ -8,12 +8,13 @@
 #include "vtrack/core/errors.hpp"
 #include "vtrack/core/limits.hpp"
 #include "vtrack/smc/mh.hpp"
+#include "vtrack/core/weights.hpp"
 
 namespace vtrack::filters {
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using core::kInf;
 // Passes of the outlier refit (header, "outlying views"): the second drops views that the first
 // fit's outliers had kept within the gate. Two as prototyped and measured (benchmarks/vehicles.py);
 // other counts were not tried.

@@ -10,12 +10,13 @@
 #include <Eigen/Geometry>
 
 #include "vtrack/core/errors.hpp"
+#include "vtrack/core/weights.hpp"
 
 namespace vtrack::models {
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using core::kInf;
 
 // Where the camera's foot c stands relative to the box extent [lo, hi] on one road axis (see the
 // header): the far edge is the one farther from c; b_coord is the optical centre's coordinate on

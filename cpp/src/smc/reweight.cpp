@@ -11,6 +11,7 @@
 #include "vtrack/core/errors.hpp"
 #include "vtrack/core/vmath.hpp"
 #include "vtrack/smc/blocks.hpp"
+#include "vtrack/core/weights.hpp"
 
 #if defined(__AVX512F__)
 #include <immintrin.h>
@@ -19,7 +20,7 @@
 namespace vtrack::smc {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using core::kInf;
 
 // a[j] <- max(start, a[begin], ..., a[j]) for j in [begin, end), for a[j] >= 0. The scalar loop's
 // chain is a compare and a conditional move per element; with AVX-512 eight elements take a

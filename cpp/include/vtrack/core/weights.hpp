@@ -5,9 +5,14 @@
 // the total log_sum_exp is -inf, normalize_log_weights() returns -inf and sets the weights to the
 // uniform 1/N (the filter has learnt nothing, so it keeps its prior), and the effective sample
 // size is 0. None of these ever produce NaN; a NaN in the input is an InvalidArgument.
+#include <limits>
+
 #include <Eigen/Core>
 
 namespace vtrack::core {
+
+// The log weight of a particle that explains nothing is -kInf.
+inline constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // log(sum_i exp(x_i)), computed stably. Empty input or all -inf gives -inf; any +inf gives +inf.
 double log_sum_exp(const Eigen::Ref<const Eigen::VectorXd>& log_weights);
