@@ -28,7 +28,7 @@ FUZZ_SECONDS ?= 300
 
 test: $(VENV)/.vtrack-installed $(VIDEO)
 	$(VENV)/bin/ctest --test-dir $(BUILD)/wheel --output-on-failure -j2
-	$(PY) -m pytest -q
+	$(PY) -m pytest -q -n auto
 	$(PY) fuzz/run.py --seconds 12
 
 fuzz: $(VENV)/.vtrack-installed

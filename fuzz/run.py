@@ -1,7 +1,7 @@
-"""Runs vtrack's atheris fuzz harnesses (fuzz/fuzz_*.py) one after another for a bounded time
-each, against the committed seed corpus, and reports what they covered and found.
+"""Runs vtrack's atheris fuzz harnesses (fuzz/fuzz_*.py), as many at a time as there are cores, for a
+bounded time each, against the committed seed corpus, and reports what they covered and found.
 
-    .venv/bin/python fuzz/run.py --seconds 12           # make test: about a minute in all
+    .venv/bin/python fuzz/run.py --seconds 12           # make test: under a minute in all
     .venv/bin/python fuzz/run.py --seconds 300 --random  # make fuzz
 
 New inputs go to a scratch corpus (build/fuzz/<harness>/), never into fuzz/corpus; a crash, a hang
@@ -14,6 +14,7 @@ sanitizer replay run it) and add a test that names the bug.
 from __future__ import annotations
 
 import argparse
+import concurrent.futures
 import os
 import re
 import shutil
@@ -60,7 +61,9 @@ def main() -> int:
                         help="scratch folder for new inputs, logs and findings")
     args = parser.parse_args()
     seed = int.from_bytes(os.urandom(4), "little") if args.random else 16
-    results = [run(h, args.seconds, seed, args.work) for h in (args.harness or HARNESSES)]
+    # Each harness is its own process, bounded by wall time (-max_total_time): one per core.
+    with concurrent.futures.ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
+        results = list(pool.map(lambda h: run(h, args.seconds, seed, args.work), args.harness or HARNESSES))
     print(f"fuzzing (libFuzzer seed {seed}):")
     print("| harness | seconds | inputs run | seed files | new inputs | result |")
     print("|---|---|---|---|---|---|")
