@@ -1,5 +1,6 @@
-"""Runs vtrack's atheris fuzz harnesses (fuzz/fuzz_*.py), as many at a time as there are cores, for a
-bounded time each, against the committed seed corpus, and reports what they covered and found.
+"""Runs vtrack's atheris fuzz harnesses (fuzz/fuzz_*.py), as many at a time as there are cores,
+for a bounded time each, against the committed seed corpus, and reports what they covered and
+found.
 
     .venv/bin/python fuzz/run.py --seconds 12           # make test: under a minute in all
     .venv/bin/python fuzz/run.py --seconds 300 --random  # make fuzz
