@@ -64,7 +64,8 @@ def main() -> int:
     seed = int.from_bytes(os.urandom(4), "little") if args.random else 16
     # Each harness is its own process, bounded by wall time (-max_total_time): one per core.
     with concurrent.futures.ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
-        results = list(pool.map(lambda h: run(h, args.seconds, seed, args.work), args.harness or HARNESSES))
+        results = list(pool.map(lambda h: run(h, args.seconds, seed, args.work),
+                                args.harness or HARNESSES))
     print(f"fuzzing (libFuzzer seed {seed}):")
     print("| harness | seconds | inputs run | seed files | new inputs | result |")
     print("|---|---|---|---|---|---|")
