@@ -19,7 +19,6 @@ using vtrack::test_reference::normal_cdf;
 
 namespace {
 
-using vtrack::core::kInf;
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 }  // namespace

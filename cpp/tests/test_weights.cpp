@@ -7,7 +7,6 @@
 #include "vtrack/core/weights.hpp"
 
 using namespace vtrack::core;
-using vtrack::core::kInf;
 
 TEST(LogSumExp, AgreesWithTheNaiveSumWhereThatIsSafe) {
   Eigen::VectorXd x(4);

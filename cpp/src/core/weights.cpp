@@ -9,7 +9,6 @@
 namespace vtrack::core {
 namespace {
 
-
 void require_no_nan(const Eigen::Ref<const Eigen::VectorXd>& x, const char* name) {
   for (Eigen::Index i = 0; i < x.size(); ++i) {
     if (std::isnan(x[i])) {

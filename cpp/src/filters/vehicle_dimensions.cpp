@@ -7,8 +7,8 @@
 
 #include "vtrack/core/errors.hpp"
 #include "vtrack/core/limits.hpp"
-#include "vtrack/smc/mh.hpp"
 #include "vtrack/core/weights.hpp"
+#include "vtrack/smc/mh.hpp"
 
 namespace vtrack::filters {
 

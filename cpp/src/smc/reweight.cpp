@@ -10,8 +10,8 @@
 
 #include "vtrack/core/errors.hpp"
 #include "vtrack/core/vmath.hpp"
-#include "vtrack/smc/blocks.hpp"
 #include "vtrack/core/weights.hpp"
+#include "vtrack/smc/blocks.hpp"
 
 #if defined(__AVX512F__)
 #include <immintrin.h>
