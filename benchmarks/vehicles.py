@@ -805,6 +805,30 @@ different causes:
     though it later passes the camera alone and whole.
   - roadside_4x3 4900 bus 22 (2.54 x 3.39 x 10.63 m): its passage is split into three tracks near
     this low camera (4.5 m); the one with the most views (9) gives 2.19 x 1.99 x 7.67 m.
+
+Session 20. max_aspect (apps/vehicles.hpp): an answer from a vehicle's own views longer than 10
+times its width is no one road vehicle's, and its joined views answer instead when theirs is one.
+Truck 13 above, looked at view by view: its clean views (IoU 0.9-1.0 with its true box) were the
+parts of a lane cut, so they went to the second (joined) estimator; its own views were 17 of a far
+blob of it and the truck ahead of it before either had a track, and two near views. For a tall
+vehicle under a low camera the near views' length resolution (4.3 m per pixel: the roof's far
+edge projects far down the road) is within resolution_factor 4 of the far ones' (12-13 m), so the
+far ones stayed. Its joined answer: 2.09 x 3.49 x 10.02 m, heavy. The grey lorry 36's own answer
+(1.27 x 1.38 x 20.1 m) is replaced by its joined one, 1.60 x 2.81 x 14.12 m, heavy. Dev seeds
+4300-4900 (12 scenes, 480 vehicles; per-scene CLI runs, this file's matching), found / light /
+heavy / reported:
+  main (e0fc080)     472/480  404/406  62/66  568
+  max_aspect 7       472/480  404/406  63/66  568   (the lorry's joined answer, 8.8 x its width, refused)
+  max_aspect 10      472/480  404/406  64/66  568   <- the default
+  max_aspect 14      472/480  404/406  64/66  568
+Nothing else changed on dev. Held out, fresh seeds 5100/5300 never run before, scored once with
+main and with the change in the same session (this command, --scene-dir for the cached scenes):
+both the same, found 238/240 (99.2 %; 234/234 of those seen apart), light 189/189, heavy 49/49,
+276 reported, MAE W H L 0.14-0.32, 0.04-0.13, 0.28-0.93 m; traffic 3074 and 2918 vehicles/h.
+Naive 2-D baseline, light at its oracle threshold: 5100 77.4, 77.4, 29.0 %; 5300 78.1, 96.9, 34.4 %.
+Over the six fresh pairs scored once (3100-5300, 1440 vehicles): found 1410/1440 (97.9 %), light
+1143/1151 (99.3 %), heavy 253/259 (97.7 %). Still wrong on dev: roadside_4x3 4900 bus 22 (split,
+above); roadside_4x3 4500 truck 6 (2.47 x 3.23 x 11.69 m) as 2.12 x 2.91 x 7.06 m, light.
 """
 
 import argparse

@@ -140,7 +140,7 @@ def test_frames_used_never_fully_in_view_and_the_parameters(camera):
             vtrack.vehicles.measure_vehicles("no-such-video.mkv", camera, hidden_horizon=bad)
         with pytest.raises(ValueError, match="hidden_max_passage"):
             vtrack.vehicles.measure_vehicles("no-such-video.mkv", camera, hidden_max_passage=bad)
-        for name in ("lane_split_gap", "lane_split_hold", "min_travel", "stitch_gap"):
+        for name in ("lane_split_gap", "lane_split_hold", "min_travel", "stitch_gap", "max_aspect"):
             with pytest.raises(ValueError, match=name):
                 vtrack.vehicles.measure_vehicles("no-such-video.mkv", camera, **{name: bad})
     light = [m for m in vtrack.vehicles.table1_vehicle_models() if not m["heavy"]]

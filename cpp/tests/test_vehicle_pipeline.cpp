@@ -1,6 +1,7 @@
 // apps::measure_vehicles on rendered frames: vehicles abreast in adjacent lanes cut apart (the lane
 // cut, with its colour step), a lone vehicle kept whole, a still blob not reported (min_travel), a
-// vehicle hidden for longer than a track coasts reported once (stitch_gap); the auto blob sizes.
+// vehicle hidden for longer than a track coasts reported once (stitch_gap); the auto blob sizes;
+// which of a vehicle's two estimates answers (max_aspect).
 // The frames are drawn with OpenCV alone (road_scene.hpp), independently of vtrack's camera.
 #include <gtest/gtest.h>
 
@@ -211,4 +212,30 @@ TEST(VehicleBlobSizes, FollowTheFocalLength) {
   const auto p = apps::blob_sizes_for(given, 300.0);
   EXPECT_EQ(p.blob_closing, 9);
   EXPECT_EQ(p.min_area, 40);
+}
+
+TEST(VehicleAnswer, OwnViewsUnlessNoOneVehiclesShape) {
+  // max_aspect: the own views' answer unless it is longer than 10 times its width (two vehicles
+  // in one outline, a lorry's upper half), then the joined views' if theirs is one vehicle's.
+  const auto estimate = [](double W, double H, double L, int frames_used) {
+    filters::VehicleEstimate e;
+    e.valid = true;
+    e.dimensions = Eigen::Vector3d(W, H, L);
+    e.frames_used = frames_used;
+    return e;
+  };
+  const filters::VehicleEstimate none;  // no used view
+  const auto truck = estimate(2.4, 3.7, 10.5, 3), merged = estimate(0.56, 1.86, 19.8, 19);
+  const auto lorry = estimate(2.55, 4.0, 16.5, 12), sliver = estimate(0.9, 1.4, 12.0, 2);
+  const double aspect = apps::VehicleBlobParams{}.max_aspect;
+  ASSERT_EQ(aspect, 10.0);
+  EXPECT_EQ(apps::vehicle_answer(merged, truck, aspect).frames_used, 3);    // not one vehicle: joined
+  EXPECT_EQ(apps::vehicle_answer(lorry, truck, aspect).frames_used, 12);    // 6.5 x its width: own
+  EXPECT_EQ(apps::vehicle_answer(merged, sliver, aspect).frames_used, 19);  // neither: own
+  EXPECT_EQ(apps::vehicle_answer(merged, none, aspect).frames_used, 19);
+  EXPECT_EQ(apps::vehicle_answer(none, sliver, aspect).frames_used, 2);     // only joined: joined
+  EXPECT_FALSE(apps::vehicle_answer(none, none, aspect).valid);
+  EXPECT_EQ(apps::vehicle_answer(merged, truck, 0.0).frames_used, 19);      // off: own when valid
+  // Exactly 10 times as long as wide is still one vehicle's shape.
+  EXPECT_EQ(apps::vehicle_answer(estimate(1.0, 1.5, 10.0, 7), truck, aspect).frames_used, 7);
 }

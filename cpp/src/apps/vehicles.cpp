@@ -166,7 +166,8 @@ const core::ParameterTable<VehicleBlobParams>& VehicleBlobParams::table() {
                             .add("lost_memory", &P::lost_memory)
                             .add("confirm_frames", &P::confirm_frames)
                             .add("min_travel", &P::min_travel)
-                            .add("stitch_gap", &P::stitch_gap);
+                            .add("stitch_gap", &P::stitch_gap)
+                            .add("max_aspect", &P::max_aspect);
   return t;
 }
 
@@ -193,6 +194,8 @@ void validate(const VehicleBlobParams& p) {
   require(p.min_travel >= 0.0 && std::isfinite(p.min_travel), "min_travel", p.min_travel,
           "a finite number of metres >= 0 (0: off)");
   require(p.stitch_gap >= 0.0 && p.stitch_gap <= 60.0, "stitch_gap", p.stitch_gap, "seconds in [0, 60]");
+  require(p.max_aspect >= 0.0 && std::isfinite(p.max_aspect), "max_aspect", p.max_aspect,
+          "a finite ratio >= 0 (length / width; 0: off)");
   require(p.confirm_frames >= 1 && p.confirm_frames <= 1000, "confirm_frames", p.confirm_frames, "in [1, 1000]");
 }
 
@@ -240,6 +243,15 @@ std::vector<PipelineSection> vehicle_sections(const VehiclePipelineParams& p) {
   return {{"background", image::KdeBackgroundParams::table().values(p.background)},
           {"blobs", VehicleBlobParams::table().values(p.blobs)},
           {"estimator", filters::VehicleEstimatorParams::table().values(p.estimator)}};
+}
+
+filters::VehicleEstimate vehicle_answer(filters::VehicleEstimate own, filters::VehicleEstimate joined,
+                                        double max_aspect) {
+  const auto one_vehicle = [max_aspect](const filters::VehicleEstimate& e) {
+    return e.valid && (max_aspect <= 0.0 || e.dimensions(2) <= max_aspect * e.dimensions(0));
+  };
+  if (one_vehicle(own) || (own.valid && !one_vehicle(joined))) return own;
+  return joined;
 }
 
 namespace {
@@ -1149,12 +1161,13 @@ class HeldViews {
     }
   }
 
-  // The answer for a confirmed track: its own views' estimate, else its joined ones'.
-  // first/last_frame and frames_seen count every view.
+  // The answer for a confirmed track (vehicle_answer()). first/last_frame and frames_seen count
+  // every view.
   filters::VehicleEstimate vehicle(int id, const std::vector<TrackView>& vs) const {
-    filters::VehicleEstimate e;
-    if (own_.next_frame(id) > 1) e = own_.estimate(id);
-    if (!e.valid && joined_.next_frame(id) > 1) e = joined_.estimate(id);
+    filters::VehicleEstimate own, joined;
+    if (own_.next_frame(id) > 1) own = own_.estimate(id);
+    if (joined_.next_frame(id) > 1) joined = joined_.estimate(id);
+    filters::VehicleEstimate e = vehicle_answer(std::move(own), std::move(joined), p_.max_aspect);
     e.vehicle_id = id;
     e.first_frame = static_cast<int>(vs.front().frame);
     e.last_frame = static_cast<int>(vs.back().frame);

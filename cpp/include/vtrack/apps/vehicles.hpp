@@ -151,6 +151,18 @@ void write_vehicles_csv(const std::string& path, const std::vector<filters::Vehi
 // learnt, a patch of changed light). A vehicle enters the view moving, so even one that stops in
 // view has travelled metres. In metres on the road, so the same at any resolution; a track with
 // fewer than two ground points (only at the image border) is kept.
+// A vehicle's answer comes from its own (clean) views; its joined ones (split parts, blobs joined
+// with or hiding another vehicle) answer when it has none, and also when the own answer is no
+// one road vehicle's shape: longer than max_aspect times its width. No road vehicle is: an
+// articulated lorry or a bus is at most ~7 times as long as its width (EU Directive 96/53/EC:
+// 16.5-18.75 m by 2.55 m), a motorbike ~3. Such an answer comes from outlines that are not the
+// vehicle's alone but were not recognised as such: two vehicles one behind the other, emerging
+// from the distance as one blob before either has a track (a 10.7 m truck as 0.56 x 1.86 x 19.8 m,
+// light), or a grey vehicle whose lower half the background model loses on grey asphalt, so that
+// its outline's lowest point is not on the road (a 13.7 m lorry as 1.27 x 1.38 x 20.1 m, light).
+// The joined answer is then taken when it is one vehicle's shape; otherwise the own one stays.
+// 10 leaves a margin over every real vehicle and over the estimates of real ones
+// (benchmarks/vehicles.py: the values tried). 0 = off.
 //
 // Pixel sizes follow the camera: the closing's side and the smallest blob are given at the
 // reference focal length of 900 px (a 960x540 road camera) and scale with the camera's focal
@@ -177,6 +189,7 @@ struct VehicleBlobParams {
   int confirm_frames = 3;             // matched frames for a track to be a vehicle
   double min_travel = 1.0;            // metres along the road a vehicle's track covers (above); 0 = off
   double stitch_gap = 2.0;            // seconds: a track continuing one that ended (above); 0 = off
+  double max_aspect = 10.0;           // length / width of one vehicle's estimate (above); 0 = off
 
   static const core::ParameterTable<VehicleBlobParams>& table();
 };
@@ -184,6 +197,12 @@ void validate(const VehicleBlobParams& params);
 // The blob parameters with the automatic pixel sizes (0) resolved for a camera of focal length
 // `focal_px` (above).
 VehicleBlobParams blob_sizes_for(VehicleBlobParams params, double focal_px);
+// A vehicle's answer from the estimates of its own views and of its joined ones (either may be
+// invalid: no used view): the own one when it is valid and one vehicle's shape (length at most
+// max_aspect times the width; max_aspect 0: any), else the joined one when it is, else whichever
+// is valid, the own one first (above: max_aspect).
+filters::VehicleEstimate vehicle_answer(filters::VehicleEstimate own, filters::VehicleEstimate joined,
+                                        double max_aspect);
 
 struct VehiclePipelineParams {
   image::KdeBackgroundParams background;
