@@ -229,13 +229,17 @@ TEST(VehicleAnswer, OwnViewsUnlessNoOneVehiclesShape) {
   const auto lorry = estimate(2.55, 4.0, 16.5, 12), sliver = estimate(0.9, 1.4, 12.0, 2);
   const double aspect = apps::VehicleBlobParams{}.max_aspect;
   ASSERT_EQ(aspect, 10.0);
-  EXPECT_EQ(apps::vehicle_answer(merged, truck, aspect).frames_used, 3);    // not one vehicle: joined
-  EXPECT_EQ(apps::vehicle_answer(lorry, truck, aspect).frames_used, 12);    // 6.5 x its width: own
-  EXPECT_EQ(apps::vehicle_answer(merged, sliver, aspect).frames_used, 19);  // neither: own
-  EXPECT_EQ(apps::vehicle_answer(merged, none, aspect).frames_used, 19);
-  EXPECT_EQ(apps::vehicle_answer(none, sliver, aspect).frames_used, 2);     // only joined: joined
-  EXPECT_FALSE(apps::vehicle_answer(none, none, aspect).valid);
-  EXPECT_EQ(apps::vehicle_answer(merged, truck, 0.0).frames_used, 19);      // off: own when valid
+  const auto answer = [](const filters::VehicleEstimate& own, const filters::VehicleEstimate& joined,
+                         double max_aspect) {
+    return apps::vehicle_answer(own, [&] { return joined; }, max_aspect);
+  };
+  EXPECT_EQ(answer(merged, truck, aspect).frames_used, 3);    // not one vehicle: joined
+  EXPECT_EQ(answer(lorry, truck, aspect).frames_used, 12);    // 6.5 x its width: own
+  EXPECT_EQ(answer(merged, sliver, aspect).frames_used, 19);  // neither: own
+  EXPECT_EQ(answer(merged, none, aspect).frames_used, 19);
+  EXPECT_EQ(answer(none, sliver, aspect).frames_used, 2);     // only joined: joined
+  EXPECT_FALSE(answer(none, none, aspect).valid);
+  EXPECT_EQ(answer(merged, truck, 0.0).frames_used, 19);      // off: own when valid
   // Exactly 10 times as long as wide is still one vehicle's shape.
-  EXPECT_EQ(apps::vehicle_answer(estimate(1.0, 1.5, 10.0, 7), truck, aspect).frames_used, 7);
+  EXPECT_EQ(answer(estimate(1.0, 1.5, 10.0, 7), truck, aspect).frames_used, 7);
 }

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <numeric>
 #include <memory>
@@ -245,13 +246,14 @@ std::vector<PipelineSection> vehicle_sections(const VehiclePipelineParams& p) {
           {"estimator", filters::VehicleEstimatorParams::table().values(p.estimator)}};
 }
 
-filters::VehicleEstimate vehicle_answer(filters::VehicleEstimate own, filters::VehicleEstimate joined,
-                                        double max_aspect) {
+filters::VehicleEstimate vehicle_answer(filters::VehicleEstimate own,
+                                        const std::function<filters::VehicleEstimate()>& joined, double max_aspect) {
   const auto one_vehicle = [max_aspect](const filters::VehicleEstimate& e) {
     return e.valid && (max_aspect <= 0.0 || e.dimensions(2) <= max_aspect * e.dimensions(0));
   };
-  if (one_vehicle(own) || (own.valid && !one_vehicle(joined))) return own;
-  return joined;
+  if (one_vehicle(own)) return own;
+  filters::VehicleEstimate fallback = joined();
+  return !own.valid || one_vehicle(fallback) ? fallback : own;
 }
 
 namespace {
@@ -1164,10 +1166,11 @@ class HeldViews {
   // The answer for a confirmed track (vehicle_answer()). first/last_frame and frames_seen count
   // every view.
   filters::VehicleEstimate vehicle(int id, const std::vector<TrackView>& vs) const {
-    filters::VehicleEstimate own, joined;
-    if (own_.next_frame(id) > 1) own = own_.estimate(id);
-    if (joined_.next_frame(id) > 1) joined = joined_.estimate(id);
-    filters::VehicleEstimate e = vehicle_answer(std::move(own), std::move(joined), p_.max_aspect);
+    const auto estimate_of = [id](const filters::VehicleDimensionEstimator& est) {
+      return est.next_frame(id) > 1 ? est.estimate(id) : filters::VehicleEstimate{};
+    };
+    filters::VehicleEstimate e =
+        vehicle_answer(estimate_of(own_), [&] { return estimate_of(joined_); }, p_.max_aspect);
     e.vehicle_id = id;
     e.first_frame = static_cast<int>(vs.front().frame);
     e.last_frame = static_cast<int>(vs.back().frame);

@@ -200,9 +200,10 @@ VehicleBlobParams blob_sizes_for(VehicleBlobParams params, double focal_px);
 // A vehicle's answer from the estimates of its own views and of its joined ones (either may be
 // invalid: no used view): the own one when it is valid and one vehicle's shape (length at most
 // max_aspect times the width; max_aspect 0: any), else the joined one when it is, else whichever
-// is valid, the own one first (above: max_aspect).
-filters::VehicleEstimate vehicle_answer(filters::VehicleEstimate own, filters::VehicleEstimate joined,
-                                        double max_aspect);
+// is valid, the own one first (above: max_aspect). `joined` is called only when the own one is not
+// one vehicle's shape (a joined estimate refits its chain).
+filters::VehicleEstimate vehicle_answer(filters::VehicleEstimate own,
+                                        const std::function<filters::VehicleEstimate()>& joined, double max_aspect);
 
 struct VehiclePipelineParams {
   image::KdeBackgroundParams background;
