@@ -1,7 +1,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <limits>
 
 #include "vtrack/core/errors.hpp"
 #include "vtrack/core/weights.hpp"

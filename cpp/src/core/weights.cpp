@@ -1,7 +1,6 @@
 #include "vtrack/core/weights.hpp"
 
 #include <cmath>
-#include <limits>
 #include <string>
 
 #include "vtrack/core/errors.hpp"

@@ -3,7 +3,6 @@
 #include <cmath>
 #include <algorithm>
 #include <cstdint>
-#include <limits>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
