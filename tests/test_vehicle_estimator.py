@@ -143,6 +143,9 @@ def test_frames_used_never_fully_in_view_and_the_parameters(camera):
         for name in ("lane_split_gap", "lane_split_hold", "min_travel", "stitch_gap", "max_aspect"):
             with pytest.raises(ValueError, match=name):
                 vtrack.vehicles.measure_vehicles("no-such-video.mkv", camera, **{name: bad})
+    for bad in (-1, 1001):
+        with pytest.raises(ValueError, match="thin_views"):
+            vtrack.vehicles.measure_vehicles("no-such-video.mkv", camera, thin_views=bad)
     light = [m for m in vtrack.vehicles.table1_vehicle_models() if not m["heavy"]]
     only_light = vtrack.vehicles.VehicleDimensionEstimator(camera, models=light, light_heavy_rule="class")
     only_light.update(1, np.array([400.0, 300.0, 60.0, 50.0]))

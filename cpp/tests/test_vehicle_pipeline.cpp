@@ -1,7 +1,7 @@
 // apps::measure_vehicles on rendered frames: vehicles abreast in adjacent lanes cut apart (the lane
 // cut, with its colour step), a lone vehicle kept whole, a still blob not reported (min_travel), a
 // vehicle hidden for longer than a track coasts reported once (stitch_gap); the auto blob sizes;
-// which of a vehicle's two estimates answers (max_aspect).
+// which of a vehicle's two estimates answers (max_aspect, thin_views).
 // The frames are drawn with OpenCV alone (road_scene.hpp), independently of vtrack's camera.
 #include <gtest/gtest.h>
 
@@ -231,7 +231,10 @@ TEST(VehicleAnswer, OwnViewsUnlessNoOneVehiclesShape) {
   ASSERT_EQ(aspect, 10.0);
   const auto answer = [](const filters::VehicleEstimate& own, const filters::VehicleEstimate& joined,
                          double max_aspect) {
-    return apps::vehicle_answer(own, [&] { return joined; }, max_aspect);
+    apps::VehicleBlobParams params;
+    params.max_aspect = max_aspect;
+    params.thin_views = 0;  // below
+    return apps::vehicle_answer(own, [&] { return joined; }, params);
   };
   EXPECT_EQ(answer(merged, truck, aspect).frames_used, 3);    // not one vehicle: joined
   EXPECT_EQ(answer(lorry, truck, aspect).frames_used, 12);    // 6.5 x its width: own
@@ -242,4 +245,32 @@ TEST(VehicleAnswer, OwnViewsUnlessNoOneVehiclesShape) {
   EXPECT_EQ(answer(merged, truck, 0.0).frames_used, 19);      // off: own when valid
   // Exactly 10 times as long as wide is still one vehicle's shape.
   EXPECT_EQ(answer(estimate(1.0, 1.5, 10.0, 7), truck, aspect).frames_used, 7);
+}
+
+TEST(VehicleAnswer, ThinOwnViewsGiveWayToThreeTimesAsManyJoined) {
+  // thin_views: an own answer from at most 2 used views (one ray fixes two of W, H, L) gives way
+  // to a joined one of one vehicle's shape from 3 times as many views or more.
+  const auto estimate = [](double L, int frames_used) {
+    filters::VehicleEstimate e;
+    e.valid = true;
+    e.dimensions = Eigen::Vector3d(2.2, 3.0, L);
+    e.frames_used = frames_used;
+    return e;
+  };
+  apps::VehicleBlobParams params;
+  ASSERT_EQ(params.thin_views, 2);
+  int joined_calls = 0;
+  const auto answer = [&](const filters::VehicleEstimate& own, const filters::VehicleEstimate& joined) {
+    return apps::vehicle_answer(own, [&] { ++joined_calls; return joined; }, params).frames_used;
+  };
+  EXPECT_EQ(answer(estimate(7.1, 1), estimate(10.4, 9)), 9);  // 1 own view, 9 joined: joined
+  EXPECT_EQ(answer(estimate(7.1, 1), estimate(10.4, 3)), 3);  // exactly 3 times as many
+  EXPECT_EQ(answer(estimate(7.1, 2), estimate(10.4, 5)), 2);  // fewer than 3 times: own
+  EXPECT_EQ(answer(estimate(7.1, 2), estimate(40.0, 9)), 2);  // joined not one vehicle's shape: own
+  EXPECT_EQ(answer(estimate(7.1, 1), filters::VehicleEstimate{}), 1);
+  EXPECT_EQ(joined_calls, 5);
+  EXPECT_EQ(answer(estimate(7.1, 3), estimate(10.4, 30)), 3);  // 3 views are not thin: own, joined not refitted
+  EXPECT_EQ(joined_calls, 5);
+  params.thin_views = 0;  // off
+  EXPECT_EQ(answer(estimate(7.1, 1), estimate(10.4, 9)), 1);
 }

@@ -168,7 +168,8 @@ const core::ParameterTable<VehicleBlobParams>& VehicleBlobParams::table() {
                             .add("confirm_frames", &P::confirm_frames)
                             .add("min_travel", &P::min_travel)
                             .add("stitch_gap", &P::stitch_gap)
-                            .add("max_aspect", &P::max_aspect);
+                            .add("max_aspect", &P::max_aspect)
+                            .add("thin_views", &P::thin_views);
   return t;
 }
 
@@ -197,6 +198,7 @@ void validate(const VehicleBlobParams& p) {
   require(p.stitch_gap >= 0.0 && p.stitch_gap <= 60.0, "stitch_gap", p.stitch_gap, "seconds in [0, 60]");
   require(p.max_aspect >= 0.0 && std::isfinite(p.max_aspect), "max_aspect", p.max_aspect,
           "a finite ratio >= 0 (length / width; 0: off)");
+  require(p.thin_views >= 0 && p.thin_views <= 1000, "thin_views", p.thin_views, "in [0, 1000] (0: off)");
   require(p.confirm_frames >= 1 && p.confirm_frames <= 1000, "confirm_frames", p.confirm_frames, "in [1, 1000]");
 }
 
@@ -247,12 +249,18 @@ std::vector<PipelineSection> vehicle_sections(const VehiclePipelineParams& p) {
 }
 
 filters::VehicleEstimate vehicle_answer(filters::VehicleEstimate own,
-                                        const std::function<filters::VehicleEstimate()>& joined, double max_aspect) {
-  const auto one_vehicle = [max_aspect](const filters::VehicleEstimate& e) {
-    return e.valid && (max_aspect <= 0.0 || e.dimensions(2) <= max_aspect * e.dimensions(0));
+                                        const std::function<filters::VehicleEstimate()>& joined,
+                                        const VehicleBlobParams& p) {
+  const auto one_vehicle = [&p](const filters::VehicleEstimate& e) {
+    return e.valid && (p.max_aspect <= 0.0 || e.dimensions(2) <= p.max_aspect * e.dimensions(0));
   };
-  if (one_vehicle(own)) return own;
+  const bool thin = own.frames_used <= p.thin_views;
+  if (one_vehicle(own) && !thin) return own;
   filters::VehicleEstimate fallback = joined();
+  if (one_vehicle(own)) {  // thin (header: thin_views)
+    constexpr int kThickerBy = 3;
+    return one_vehicle(fallback) && fallback.frames_used >= kThickerBy * own.frames_used ? fallback : own;
+  }
   return !own.valid || one_vehicle(fallback) ? fallback : own;
 }
 
@@ -1170,7 +1178,7 @@ class HeldViews {
       return est.next_frame(id) > 1 ? est.estimate(id) : filters::VehicleEstimate{};
     };
     filters::VehicleEstimate e =
-        vehicle_answer(estimate_of(own_), [&] { return estimate_of(joined_); }, p_.max_aspect);
+        vehicle_answer(estimate_of(own_), [&] { return estimate_of(joined_); }, p_);
     e.vehicle_id = id;
     e.first_frame = static_cast<int>(vs.front().frame);
     e.last_frame = static_cast<int>(vs.back().frame);

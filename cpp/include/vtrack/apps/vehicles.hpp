@@ -163,6 +163,14 @@ void write_vehicles_csv(const std::string& path, const std::vector<filters::Vehi
 // The joined answer is then taken when it is one vehicle's shape; otherwise the own one stays.
 // 10 leaves a margin over every real vehicle and over the estimates of real ones
 // (benchmarks/vehicles.py: the values tried). 0 = off.
+// Nor does an own answer that rests on thin_views (2) used views or fewer stand against a joined
+// one of one vehicle's shape resting on 3 times as many or more. One view's ray fixes two of the
+// cuboid's three dimensions (§3.1: the far corner lies on the ray, a 1-D family of W-H-L); along
+// the ray the answer is the class prior's, and two rays from nearly the same place along the road
+// say little more. So a heavy seen whole, apart from its neighbours, in a frame or two comes out
+// at a Table 1 truck's size (an 11.7 m truck as 2.12 x 2.91 x 7.06 m, light, from one view), while
+// its lane-cut parts, nine views from different places, fix its length (1.46 x 3.53 x 10.43 m,
+// heavy). 0 = off (benchmarks/vehicles.py: the values tried).
 //
 // Pixel sizes follow the camera: the closing's side and the smallest blob are given at the
 // reference focal length of 900 px (a 960x540 road camera) and scale with the camera's focal
@@ -190,6 +198,7 @@ struct VehicleBlobParams {
   double min_travel = 1.0;            // metres along the road a vehicle's track covers (above); 0 = off
   double stitch_gap = 2.0;            // seconds: a track continuing one that ended (above); 0 = off
   double max_aspect = 10.0;           // length / width of one vehicle's estimate (above); 0 = off
+  int thin_views = 2;                 // an own answer from this many used views or fewer is thin (above); 0 = off
 
   static const core::ParameterTable<VehicleBlobParams>& table();
 };
@@ -198,12 +207,15 @@ void validate(const VehicleBlobParams& params);
 // `focal_px` (above).
 VehicleBlobParams blob_sizes_for(VehicleBlobParams params, double focal_px);
 // A vehicle's answer from the estimates of its own views and of its joined ones (either may be
-// invalid: no used view): the own one when it is valid and one vehicle's shape (length at most
-// max_aspect times the width; max_aspect 0: any), else the joined one when it is, else whichever
-// is valid, the own one first (above: max_aspect). `joined` is called only when the own one is not
-// one vehicle's shape (a joined estimate refits its chain).
+// invalid: no used view): the own one when it is valid, one vehicle's shape (length at most
+// max_aspect times the width; max_aspect 0: any) and not thin; a thin one (at most thin_views used
+// views) only when the joined one is not one vehicle's shape or rests on fewer than 3 times its
+// views; an own one that is not one vehicle's shape only when the joined one is not either (or is
+// invalid); else the joined one (above: max_aspect, thin_views). `joined` is called only when the
+// own answer is not one vehicle's shape or is thin (a joined estimate refits its chain).
 filters::VehicleEstimate vehicle_answer(filters::VehicleEstimate own,
-                                        const std::function<filters::VehicleEstimate()>& joined, double max_aspect);
+                                        const std::function<filters::VehicleEstimate()>& joined,
+                                        const VehicleBlobParams& params);
 
 struct VehiclePipelineParams {
   image::KdeBackgroundParams background;
