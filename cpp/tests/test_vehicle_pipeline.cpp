@@ -248,8 +248,8 @@ TEST(VehicleAnswer, OwnViewsUnlessNoOneVehiclesShape) {
 }
 
 TEST(VehicleAnswer, ThinOwnViewsGiveWayToThreeTimesAsManyJoined) {
-  // thin_views: an own answer from at most 2 used views (one ray fixes two of W, H, L) gives way
-  // to a joined one of one vehicle's shape from 3 times as many views or more.
+  // thin_views: an own answer from one used view (its ray fixes two of W, H, L) gives way to a
+  // joined one of one vehicle's shape from 3 times as many views or more.
   const auto estimate = [](double L, int frames_used) {
     filters::VehicleEstimate e;
     e.valid = true;
@@ -258,19 +258,21 @@ TEST(VehicleAnswer, ThinOwnViewsGiveWayToThreeTimesAsManyJoined) {
     return e;
   };
   apps::VehicleBlobParams params;
-  ASSERT_EQ(params.thin_views, 2);
+  ASSERT_EQ(params.thin_views, 1);
   int joined_calls = 0;
   const auto answer = [&](const filters::VehicleEstimate& own, const filters::VehicleEstimate& joined) {
     return apps::vehicle_answer(own, [&] { ++joined_calls; return joined; }, params).frames_used;
   };
   EXPECT_EQ(answer(estimate(7.1, 1), estimate(10.4, 9)), 9);  // 1 own view, 9 joined: joined
   EXPECT_EQ(answer(estimate(7.1, 1), estimate(10.4, 3)), 3);  // exactly 3 times as many
-  EXPECT_EQ(answer(estimate(7.1, 2), estimate(10.4, 5)), 2);  // fewer than 3 times: own
-  EXPECT_EQ(answer(estimate(7.1, 2), estimate(40.0, 9)), 2);  // joined not one vehicle's shape: own
+  EXPECT_EQ(answer(estimate(7.1, 1), estimate(10.4, 2)), 1);  // fewer than 3 times: own
+  EXPECT_EQ(answer(estimate(7.1, 1), estimate(40.0, 9)), 1);  // joined not one vehicle's shape: own
   EXPECT_EQ(answer(estimate(7.1, 1), filters::VehicleEstimate{}), 1);
   EXPECT_EQ(joined_calls, 5);
-  EXPECT_EQ(answer(estimate(7.1, 3), estimate(10.4, 30)), 3);  // 3 views are not thin: own, joined not refitted
+  EXPECT_EQ(answer(estimate(7.1, 2), estimate(10.4, 30)), 2);  // 2 views are not thin: own, joined not refitted
   EXPECT_EQ(joined_calls, 5);
+  params.thin_views = 2;
+  EXPECT_EQ(answer(estimate(7.1, 2), estimate(10.4, 6)), 6);
   params.thin_views = 0;  // off
   EXPECT_EQ(answer(estimate(7.1, 1), estimate(10.4, 9)), 1);
 }

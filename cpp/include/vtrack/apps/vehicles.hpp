@@ -163,14 +163,15 @@ void write_vehicles_csv(const std::string& path, const std::vector<filters::Vehi
 // The joined answer is then taken when it is one vehicle's shape; otherwise the own one stays.
 // 10 leaves a margin over every real vehicle and over the estimates of real ones
 // (benchmarks/vehicles.py: the values tried). 0 = off.
-// Nor does an own answer that rests on thin_views (2) used views or fewer stand against a joined
-// one of one vehicle's shape resting on 3 times as many or more. One view's ray fixes two of the
+// Nor does an own answer that rests on thin_views (1) used view stand against a joined one of one
+// vehicle's shape resting on 3 times as many views or more. One view's ray fixes two of the
 // cuboid's three dimensions (§3.1: the far corner lies on the ray, a 1-D family of W-H-L); along
-// the ray the answer is the class prior's, and two rays from nearly the same place along the road
-// say little more. So a heavy seen whole, apart from its neighbours, in a frame or two comes out
-// at a Table 1 truck's size (an 11.7 m truck as 2.12 x 2.91 x 7.06 m, light, from one view), while
-// its lane-cut parts, nine views from different places, fix its length (1.46 x 3.53 x 10.43 m,
-// heavy). 0 = off (benchmarks/vehicles.py: the values tried).
+// the ray the answer is the class prior's. So a heavy seen whole, apart from its neighbours, in
+// one frame comes out at a Table 1 truck's size (an 11.7 m truck as 2.12 x 2.91 x 7.06 m, light),
+// while its lane-cut parts, nine views from different places, fix its length (1.46 x 3.53 x
+// 10.43 m, heavy). A second view from elsewhere on the road fixes the third dimension: with two
+// own views the joined answer was the farther from the truth in 5 of 5 vehicles, with one in 2 of
+// 9 (benchmarks/vehicles.py: the values tried). 0 = off.
 //
 // Pixel sizes follow the camera: the closing's side and the smallest blob are given at the
 // reference focal length of 900 px (a 960x540 road camera) and scale with the camera's focal
@@ -198,7 +199,7 @@ struct VehicleBlobParams {
   double min_travel = 1.0;            // metres along the road a vehicle's track covers (above); 0 = off
   double stitch_gap = 2.0;            // seconds: a track continuing one that ended (above); 0 = off
   double max_aspect = 10.0;           // length / width of one vehicle's estimate (above); 0 = off
-  int thin_views = 2;                 // an own answer from this many used views or fewer is thin (above); 0 = off
+  int thin_views = 1;                 // an own answer from this many used views or fewer is thin (above); 0 = off
 
   static const core::ParameterTable<VehicleBlobParams>& table();
 };
