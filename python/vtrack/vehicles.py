@@ -65,9 +65,9 @@ def measure_vehicles(video: Union[str, PathLike], camera: CameraLike, *,
     :meth:`VehicleDimensionEstimator.default_params`; blobs: foreground_threshold, blob_closing,
     min_area, min_overlap, merge_min_share, foot_gate, lane_split_gap, lane_split_hold, hidden_horizon,
     hidden_max_passage, hold_views, lost_memory, confirm_frames, min_travel, stitch_gap, max_aspect,
-    thin_views; background: ``KdeBackground``'s). out, tracks, render: also write vehicles.csv, the MOTChallenge
-    rows of the vehicles' image boxes, the annotated video. progress: True or a callable(done,
-    total).
+    thin_views; background: ``KdeBackground``'s). out, tracks, render: also write vehicles.csv, the
+    MOTChallenge rows of the vehicles' image boxes, the annotated video. progress: True or a
+    callable(done, total).
 
     Returns one dict per vehicle (as :meth:`VehicleDimensionEstimator.estimates`), and with
     return_tracks also the (N, 10) MOTChallenge rows.

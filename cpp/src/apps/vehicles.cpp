@@ -254,14 +254,13 @@ filters::VehicleEstimate vehicle_answer(filters::VehicleEstimate own,
   const auto one_vehicle = [&p](const filters::VehicleEstimate& e) {
     return e.valid && (p.max_aspect <= 0.0 || e.dimensions(2) <= p.max_aspect * e.dimensions(0));
   };
-  const bool thin = own.frames_used <= p.thin_views;
-  if (one_vehicle(own) && !thin) return own;
+  if (!own.valid) return joined();
+  const bool own_shape = one_vehicle(own), thin = own.frames_used <= p.thin_views;
+  if (own_shape && !thin) return own;
   filters::VehicleEstimate fallback = joined();
-  if (one_vehicle(own)) {  // thin (header: thin_views)
-    constexpr int kThickerBy = 3;
-    return one_vehicle(fallback) && fallback.frames_used >= kThickerBy * own.frames_used ? fallback : own;
-  }
-  return !own.valid || one_vehicle(fallback) ? fallback : own;
+  if (!one_vehicle(fallback)) return own;
+  constexpr int kThickerBy = 3;  // a thin own answer stands unless the joined one rests on this many times its views
+  return own_shape && fallback.frames_used < kThickerBy * own.frames_used ? own : fallback;
 }
 
 namespace {

@@ -208,12 +208,12 @@ void validate(const VehicleBlobParams& params);
 // `focal_px` (above).
 VehicleBlobParams blob_sizes_for(VehicleBlobParams params, double focal_px);
 // A vehicle's answer from the estimates of its own views and of its joined ones (either may be
-// invalid: no used view): the own one when it is valid, one vehicle's shape (length at most
-// max_aspect times the width; max_aspect 0: any) and not thin; a thin one (at most thin_views used
-// views) only when the joined one is not one vehicle's shape or rests on fewer than 3 times its
-// views; an own one that is not one vehicle's shape only when the joined one is not either (or is
-// invalid); else the joined one (above: max_aspect, thin_views). `joined` is called only when the
-// own answer is not one vehicle's shape or is thin (a joined estimate refits its chain).
+// invalid: no used view; above: max_aspect, thin_views). The joined one answers when the own one
+// is invalid; when the own one is not one vehicle's shape (longer than max_aspect times its width)
+// and the joined one is; and when the own one is thin (at most thin_views used views) and the
+// joined one is one vehicle's shape resting on 3 times as many views or more. Otherwise the own
+// one answers. `joined` is called only when the own answer is invalid, not one vehicle's shape or
+// thin (a joined estimate refits its chain).
 filters::VehicleEstimate vehicle_answer(filters::VehicleEstimate own,
                                         const std::function<filters::VehicleEstimate()>& joined,
                                         const VehicleBlobParams& params);
