@@ -276,6 +276,37 @@ def test_a_track_keeps_the_vehicle_whose_foot_it_follows_when_a_blob_parts(tmp_p
     assert before < after_b and not after_a & before
 
 
+def test_a_vehicle_entering_where_one_left_through_the_border_starts_its_own_track(tmp_path):
+    """A (20 x 40 px) drives down the image and out through its bottom border: its foot reaches the
+    bottom row at frame 35 and its last rows leave at frame 48. B (20 x 40 px), in the next columns,
+    drives up from the bottom border from frame 35, one blob with A's remains while both touch the
+    border (no ground point: the blob continues A's track by overlap). B's foot leaves the border at
+    frame 48, where A's road line puts A's foot tens of pixels below the image: B starts its own
+    track there. Regression: the foot gate held only while the track's last view had a ground point,
+    so B's first view off the border went to A's track (a lorry leaving past a roadside camera took
+    38 frames of a van entering there in the other direction, which made the lorry 5.7 m long)."""
+    import cv2
+    from vtrack.synthetic_road import CameraSetup
+    camera = tmp_path / "camera.json"
+    camera.write_text(json.dumps(CameraSetup(**SMALL_MAST).camera_file()))
+    (tmp_path / "frames").mkdir()
+    enter = 34  # B's first frame (from 0); A's foot, 77 + 3 k, reaches the bottom row (179) then
+    for k in range(70):
+        img = np.full((180, 320, 3), 110, np.uint8)
+        if k >= 1:
+            cv2.rectangle(img, (150, 38 + 3 * k), (169, 77 + 3 * k), (40, 40, 200), -1)  # A
+        if k >= enter:
+            top = 180 - 3 * (k - enter + 1)
+            cv2.rectangle(img, (160, top), (179, top + 39), (60, 160, 60), -1)  # B
+        cv2.imwrite(str(tmp_path / "frames" / f"{k:04d}.png"), img)
+    b_off_border = enter + 14  # frames from 1: B's lowest row is 177 there
+    vehicles, rows = vtrack.vehicles.measure_vehicles(tmp_path / "frames", camera, return_tracks=True)
+    ids = {int(r[1]) for r in rows if r[0] < b_off_border}
+    assert len(vehicles) == 2 and len(ids) == 1
+    b_rows = rows[rows[:, 0] >= b_off_border]
+    assert b_off_border in b_rows[:, 0] and np.all(b_rows[:, 2] == 159.5) and not ids & set(b_rows[:, 1].astype(int))
+
+
 def test_a_blob_that_never_moves_is_a_ghost_not_a_vehicle(tmp_path):
     """A box appears at frame 11 and stays where it is to the end (a ghost of the background: road
     uncovered where something stood while the background was learnt, or a change of light), beside

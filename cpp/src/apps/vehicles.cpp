@@ -685,13 +685,15 @@ cv::Rect2d predicted(const BlobTrack& t, long long frame, const models::Camera& 
 // gate x the predicted box's height vertically and gate x its larger side horizontally of the image
 // of the predicted ground point, plus one pixel each way (the foot's row, the mean x of that row and
 // the box the prediction scales from are whole pixels: on a blob 2 px tall the gate alone would be
-// finer than the grid). True when either has no ground point (a new track, a silhouette cut by the
-// border) or the gate is off.
+// finer than the grid). The road line holds after views cut by the border too (their feet are not
+// ground points, but the vehicle drives on): a vehicle leaving the image has its predicted foot
+// beyond the border, or behind the camera, where no blob's foot can be. True when either has no
+// ground point (a new track, a silhouette cut by the border) or the gate is off.
 bool foot_agrees(const BlobTrack& t, const Blob& b, const cv::Rect2d& pred, long long frame,
                  const models::Camera& camera, double gate) {
-  if (gate <= 0.0 || !b.has_ground || !t.ground.has_velocity() || t.ground_frame != t.last_matched) return true;
+  if (gate <= 0.0 || !b.has_ground || !t.ground.has_velocity()) return true;
   const Eigen::Vector2d foot = camera.road_to_image_points(t.ground.at(frame)).col(0);
-  if (!foot.allFinite()) return true;
+  if (!foot.allFinite()) return false;  // behind the camera
   constexpr double kPixel = 1.0;
   return std::fabs(foot.y() - b.foot.y) <= gate * pred.height + kPixel &&
          std::fabs(foot.x() - b.foot.x) <= gate * std::max(pred.width, pred.height) + kPixel;

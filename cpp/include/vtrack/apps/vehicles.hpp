@@ -88,7 +88,11 @@ void write_vehicles_csv(const std::string& path, const std::vector<filters::Vehi
 // vehicle's foot -- a blob that lost or gained a vehicle stacked with it in the image (a near car
 // below a far lorry under the gantry). It then starts a track of its own instead of switching
 // this one to the other vehicle and bending its road line. A ratio of the vehicle's own image
-// size: the same at any resolution (benchmarks/vehicles.py: the values tried).
+// size: the same at any resolution (benchmarks/vehicles.py: the values tried). The road line is
+// the vehicle's even after its views cut by the image border (no ground point in them): a lorry
+// leaving the image past a roadside camera has its predicted foot behind the camera, so the car
+// entering from that border in the other direction starts its own track instead of taking the
+// lorry's (whose answer it made a 5.7 m light vehicle).
 // Outlines of two vehicles found afterwards: a vehicle far behind a nearer one in the same lane
 // (under a gantry, on a low mast) shows above it in the image, and the two emerge from the distance
 // as one blob; no track of the far one exists yet, so nothing marks the blob as two vehicles' and
