@@ -937,6 +937,7 @@ METHODS = {
     "mh all (n_particles 100)": {"sampler": "mh", "reference": "all", "n_particles": 100},
     "discrete": {"sampler": "discrete"},
     "rays (extension, default)": {},
+    "rays, no far views": {"sampler": "rays", "far_view_gate": 0.0},
     "rays, decision=mean": {"sampler": "rays", "decision": "mean"},
     "rays, rule=class": {"sampler": "rays", "light_heavy_rule": "class"},
 }
@@ -955,6 +956,7 @@ ABLATIONS = {
     "rays, n_particles 50, burn_in 25": {"sampler": "rays", "n_particles": 50, "burn_in": 25},
     "ray, heavy_volume 40": {"sampler": "ray", "heavy_volume": 40.0},
     "ray, heavy_volume 50": {"sampler": "ray", "heavy_volume": 50.0},
+    "rays, max_vehicle_width 0 (off)": {"sampler": "rays", "max_vehicle_width": 0.0},
     "mh, sigma 0.1": {"sampler": "mh", "sigma_w": 0.1, "sigma_h": 0.1, "sigma_l": 0.1},
     "mh, sigma 0.5": {"sampler": "mh", "sigma_w": 0.5, "sigma_h": 0.5, "sigma_l": 0.5},
     "rays, sigma 0.1": {"sampler": "rays", "sigma_w": 0.1, "sigma_h": 0.1, "sigma_l": 0.1},

@@ -303,6 +303,30 @@ TEST(VehicleDimensionEstimator, HeavyByHeightWhenTheVolumeFallsShort) {
   }
 }
 
+TEST(VehicleDimensionEstimator, NoWidthBeyondTheWidestVehicleCountsInTheVolume) {
+  // Two cars abreast as one outline for their whole passage: a 3.6 x 2.1 x 7 m cuboid (53 m^3) --
+  // rendered as that cuboid, under one broad model so that the answer follows the views. Its own
+  // volume calls it heavy (max_vehicle_width 0); with the default (2.6 m, the widest road vehicle)
+  // the volume counts 2.6 m of its width, 38 m^3: light. A real heavy, 2.5 x 3.0 x 9 m, is heavy
+  // under both. Each answer against its own estimate's W H L.
+  const std::vector<models::VehicleModel> broad{{"any", {2.5, 2.5, 7.0}, {1.0, 1.0, 3.0}, 1.0, false}};
+  for (double widest : {0.0, VehicleEstimatorParams{}.max_vehicle_width}) {
+    VehicleEstimatorParams p;
+    p.max_vehicle_width = widest;
+    p.heavy_height = 0.0;  // the volume alone
+    filters::VehicleDimensionEstimator est(mast_camera(), broad, p);
+    drive(est, 1, 1.0, {3.6, 2.1, 7.0}, 16.0, 40.0);
+    drive(est, 2, 4.3, {2.5, 3.0, 9.0}, 16.0, 40.0);
+    const auto abreast = est.estimate(1), heavy = est.estimate(2);
+    ASSERT_TRUE(abreast.valid && heavy.valid);
+    EXPECT_GT(abreast.dimensions.x(), 3.0) << abreast.dimensions.transpose();
+    EXPECT_GT(abreast.dimensions.prod(), p.heavy_volume) << abreast.dimensions.transpose();
+    EXPECT_LT(2.6 * abreast.dimensions.y() * abreast.dimensions.z(), p.heavy_volume) << abreast.dimensions.transpose();
+    EXPECT_EQ(abreast.heavy, widest == 0.0);
+    EXPECT_TRUE(heavy.heavy) << heavy.dimensions.transpose();
+  }
+}
+
 TEST(VehicleDimensionEstimator, SameSeedSameResultWhateverTheOrderOfVehicles) {
   VehicleEstimatorParams p;
   p.seed = 11;
@@ -389,6 +413,7 @@ TEST(VehicleDimensionEstimator, ResolutionCutIsRelaxedToEachVehiclesBestViews) {
   p.thinning = 10;
   p.max_length_resolution = 0.5 * best;  // no view passes the fixed cut
   p.length_resolution_factor = 0.0;      // alone
+  p.far_view_gate = 0.0;                 // the cut alone (far views: the next test)
   const std::vector<models::VehicleModel> one{{"only", m, s, 1.0, false}};
   filters::VehicleDimensionEstimator fixed(cam, one, p);
   for (std::size_t k = 0; k < approaching.size(); ++k) fixed.update_polygon(1, static_cast<int>(k) + 1, approaching[k]);
@@ -417,6 +442,37 @@ TEST(VehicleDimensionEstimator, ResolutionCutIsRelaxedToEachVehiclesBestViews) {
   }
 }
 
+// Far views (far_view_gate): the views beyond the cut whose rays lie within the gate of the near
+// views' answer join it. Exact silhouettes of one rigid cuboid all agree, so every view joins and
+// the answer is the closed-form posterior given all of them; a view of a cuboid 8 m longer (two
+// vehicles in one far outline) lies beyond the gate and stays out.
+TEST(VehicleDimensionEstimator, FarViewsThatAgreeJoinTheAnswer) {
+  const Camera cam = mast_camera();
+  const Eigen::Vector3d whl(2.5, 3.8, 12.0), m(2.3, 3.2, 10.0), s(0.3, 0.5, 2.0);
+  std::vector<Eigen::Matrix2Xd> approaching;
+  std::vector<VehicleObservation> views;
+  for (double along = 66.0; along >= 36.0; along -= 3.0) {
+    approaching.push_back(silhouette(cam, corners_at(cam, 4.3, along, whl(0), whl(1), whl(2))));
+    views.push_back(models::observe_silhouette(cam, approaching.back()));
+  }
+  const Eigen::Matrix2Xd merged = silhouette(cam, corners_at(cam, 4.3, 75.0, whl(0), whl(1), whl(2) + 8.0));
+  auto p = chain_params(VehicleSampler::Rays, 20000);
+  p.proposal_scale = 0.3;
+  p.thinning = 10;
+  p.length_resolution_factor = 1.3;  // three views within the cut (the previous test)
+  const std::vector<models::VehicleModel> one{{"only", m, s, 1.0, false}};
+  filters::VehicleDimensionEstimator est(cam, one, p);
+  est.update_polygon(1, 1, merged);  // the farthest: used until nearer views tighten the cut
+  for (std::size_t k = 0; k < approaching.size(); ++k) est.update_polygon(1, static_cast<int>(k) + 2, approaching[k]);
+  const auto [mu, cov] = gaussian_posterior(views, m, s, p.likelihood.sigma_w);
+  const auto e = est.estimate(1);
+  ASSERT_TRUE(e.valid);
+  EXPECT_EQ(e.frames_used, static_cast<int>(views.size()));
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(e.dimensions(k), mu(k), 4.0 * std::sqrt(cov(k, k) / 1000.0)) << "dimension " << k;
+  }
+}
+
 TEST(VehicleDimensionEstimator, ParametersAreValidated) {
   const auto bad = [](auto set) {
     VehicleEstimatorParams p;
@@ -434,6 +490,8 @@ TEST(VehicleDimensionEstimator, ParametersAreValidated) {
   bad([](VehicleEstimatorParams& p) { p.border_margin_px = -1.0; });
   bad([](VehicleEstimatorParams& p) { p.max_length_resolution = std::nan(""); });
   bad([](VehicleEstimatorParams& p) { p.length_resolution_factor = 0.5; });
+  bad([](VehicleEstimatorParams& p) { p.far_view_gate = -1.0; });
+  bad([](VehicleEstimatorParams& p) { p.max_vehicle_width = std::nan(""); });
   // The table names every field.
   const auto& t = VehicleEstimatorParams::table();
   VehicleEstimatorParams p;

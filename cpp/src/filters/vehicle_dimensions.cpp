@@ -244,11 +244,13 @@ const core::ParameterTable<VehicleEstimatorParams>& VehicleEstimatorParams::tabl
                             .add_choice("light_heavy_rule", &P::light_heavy_rule, light_heavy_rule_names())
                             .add("heavy_volume", &P::heavy_volume)
                             .add("heavy_height", &P::heavy_height)
+                            .add("max_vehicle_width", &P::max_vehicle_width)
                             .add_choice("decision", &P::decision, vehicle_decision_names())
                             .add("border_margin_px", &P::border_margin_px)
                             .add("max_length_resolution", &P::max_length_resolution)
                             .add("length_resolution_factor", &P::length_resolution_factor)
                             .add("outlier_gate", &P::outlier_gate)
+                            .add("far_view_gate", &P::far_view_gate)
                             .add("seed", &P::seed);
   return t;
 }
@@ -268,6 +270,8 @@ void validate(const VehicleEstimatorParams& p) {
           "a positive finite number (m^3)");
   require(p.heavy_height >= 0.0 && std::isfinite(p.heavy_height), "heavy_height", p.heavy_height,
           "a finite number >= 0 (metres; 0: off)");
+  require(p.max_vehicle_width >= 0.0 && std::isfinite(p.max_vehicle_width), "max_vehicle_width",
+          p.max_vehicle_width, "a finite number >= 0 (metres; 0: off)");
   require(p.border_margin_px >= 0.0 && std::isfinite(p.border_margin_px), "border_margin_px", p.border_margin_px,
           "a finite number >= 0 (pixels)");
   require(p.max_length_resolution >= 0.0 && std::isfinite(p.max_length_resolution), "max_length_resolution",
@@ -277,6 +281,8 @@ void validate(const VehicleEstimatorParams& p) {
           "length_resolution_factor", p.length_resolution_factor,
           "0 (off) or a finite number >= 1 (a factor of the vehicle's best view's resolution)");
   require(p.outlier_gate >= 0.0 && std::isfinite(p.outlier_gate), "outlier_gate", p.outlier_gate,
+          "a finite number >= 0 (Mahalanobis distance under S; 0: off)");
+  require(p.far_view_gate >= 0.0 && std::isfinite(p.far_view_gate), "far_view_gate", p.far_view_gate,
           "a finite number >= 0 (Mahalanobis distance under S; 0: off)");
 }
 
@@ -403,7 +409,10 @@ void VehicleDimensionEstimator::drop_coarse_views(Track& t) const {
   const bool rays = params_.sampler == VehicleSampler::Rays;
   std::size_t kept = 0;
   for (std::size_t i = 0; i < t.resolution.size(); ++i) {
-    if (t.resolution[i] > bound) continue;
+    if (t.resolution[i] > bound) {
+      if (rays && params_.far_view_gate > 0.0) t.far_terms.push_back(t.ray_terms[i]);
+      continue;
+    }
     t.resolution[kept] = t.resolution[i];
     t.means[kept] = t.means[i];
     t.class_probability[kept] = t.class_probability[i];
@@ -428,10 +437,14 @@ bool VehicleDimensionEstimator::add(Track& t, const VehicleObservation& obs) {
     t.best_resolution = resolution;
     drop_coarse_views(t);
   }
-  if (resolution > resolution_bound(t.best_resolution)) return false;  // too far to tell its length
-  if (params_.sampler == VehicleSampler::Rays) {
-    RaySums term;
-    term.add(obs, params_.likelihood);
+  const bool rays = params_.sampler == VehicleSampler::Rays;
+  RaySums term;
+  if (rays) term.add(obs, params_.likelihood);
+  if (resolution > resolution_bound(t.best_resolution)) {  // too far to tell its length
+    if (rays && params_.far_view_gate > 0.0) t.far_terms.push_back(term);
+    return false;
+  }
+  if (rays) {
     t.rays.add(term);
     t.ray_terms.push_back(term);
   }
@@ -478,24 +491,46 @@ const VehiclePosterior* VehicleDimensionEstimator::posterior(int vehicle_id) con
 int VehicleDimensionEstimator::refit_without_outliers(const Track& t, VehiclePosterior& post) const {
   std::vector<const RaySums*> kept;
   for (const auto& term : t.ray_terms) kept.push_back(&term);
-  if (params_.outlier_gate <= 0.0) return static_cast<int>(kept.size());
-  const double gate2 = params_.outlier_gate * params_.outlier_gate;
-  const Mixture mixture(prior_, params_.min_size);
   core::Rng rng = t.rng;
-  for (int pass = 0; pass < kOutlierPasses; ++pass) {
-    std::vector<const RaySums*> inside;
-    RaySums sums;
-    for (const RaySums* term : kept) {
-      if (term->squared_distance(post.mean) > gate2) continue;
-      inside.push_back(term);
-      sums.add(*term);
+  if (params_.outlier_gate > 0.0) {
+    const double gate2 = params_.outlier_gate * params_.outlier_gate;
+    for (int pass = 0; pass < kOutlierPasses; ++pass) {
+      std::vector<const RaySums*> inside;
+      RaySums sums;
+      for (const RaySums* term : kept) {
+        if (term->squared_distance(post.mean) > gate2) continue;
+        inside.push_back(term);
+        sums.add(*term);
+      }
+      if (inside.empty() || inside.size() == kept.size()) break;
+      kept = std::move(inside);
+      rechain(sums, post, rng);
     }
-    if (inside.empty() || inside.size() == kept.size()) break;
-    kept = std::move(inside);
-    post = space_chain([&](const Eigen::Vector3d& x) { return sums.log_likelihood(x) + mixture(x); }, post.mean,
-                       params_, rng);
-    summarise(post, prior_);
   }
+  return add_far_views(t, std::move(kept), post, rng);
+}
+
+// `post` replaced by the chain on the product of the rays in `sums` and the prior, from its mean.
+void VehicleDimensionEstimator::rechain(const RaySums& sums, VehiclePosterior& post, core::Rng& rng) const {
+  const Mixture mixture(prior_, params_.min_size);
+  post = space_chain([&](const Eigen::Vector3d& x) { return sums.log_likelihood(x) + mixture(x); }, post.mean,
+                     params_, rng);
+  summarise(post, prior_);
+}
+
+// The far views that agree with the answer join it (header, "far views"): the chain re-runs on the
+// kept views and the far views within far_view_gate of `post`. Returns the number of views used.
+int VehicleDimensionEstimator::add_far_views(const Track& t, std::vector<const RaySums*> kept,
+                                             VehiclePosterior& post, core::Rng& rng) const {
+  const double gate2 = params_.far_view_gate * params_.far_view_gate;
+  const std::size_t near = kept.size();
+  for (const auto& term : t.far_terms) {
+    if (term.squared_distance(post.mean) <= gate2) kept.push_back(&term);
+  }
+  if (kept.size() == near) return static_cast<int>(near);
+  RaySums sums;
+  for (const RaySums* term : kept) sums.add(*term);
+  rechain(sums, post, rng);
   return static_cast<int>(kept.size());
 }
 
@@ -536,10 +571,13 @@ VehicleEstimate VehicleDimensionEstimator::estimate(int vehicle_id) const {
   e.class_index = static_cast<int>(best);
   const auto& model = prior_.params().models[static_cast<std::size_t>(best)];
   e.class_name = model.name;
-  // "volume": W H L >= heavy_volume, or H >= heavy_height (header: light/heavy).
+  // "volume": W H L >= heavy_volume, W at most max_vehicle_width, or H >= heavy_height (header:
+  // light/heavy).
   const bool tall = params_.heavy_height > 0.0 && e.dimensions.y() >= params_.heavy_height;
-  e.heavy = params_.light_heavy_rule == LightHeavyRule::Class ? model.heavy
-                                                               : e.dimensions.prod() >= params_.heavy_volume || tall;
+  const double width = params_.max_vehicle_width > 0.0 ? std::min(e.dimensions.x(), params_.max_vehicle_width)
+                                                       : e.dimensions.x();
+  const double volume = width * e.dimensions.y() * e.dimensions.z();
+  e.heavy = params_.light_heavy_rule == LightHeavyRule::Class ? model.heavy : volume >= params_.heavy_volume || tall;
   return e;
 }
 

@@ -73,6 +73,17 @@
 //     keeping the fit when no view or every view would go: a trimmed least squares. The frames
 //     left out are not counted in frames_used. 0 = off. The per-frame posteriors (update(),
 //     posterior()) are not refitted; only the answer (estimate()) is.
+//   * far views ("rays", far_view_gate): the views the resolution cut leaves out are held, and
+//     those whose ray lies within far_view_gate of the refitted answer (the same units) join it:
+//     the chain re-runs on the kept views and those far ones, which count in frames_used. Why: the
+//     views within the cut are the near ones, whose rays come from much the same direction, so
+//     together they fix two of W, H, L well and leave the third to the class prior -- and Table
+//     1's truck is 2.0 +- 0.2 m wide, a van's size: from exact silhouettes, heavies came out
+//     0.2-0.6 m narrow and 0.4-3 m short. A far view's shallow ray crosses them and fixes that
+//     third dimension. The cut is there for the far outlines that are no one vehicle's (two
+//     vehicles emerging from the distance as one blob, metres too long): their rays miss the
+//     answer of the near views and stay out. Default 3, the outlier gate's: a far view joins when
+//     it would be no outlier among the near ones (benchmarks/vehicles.py: the figures). 0 = off.
 //   * the per-vehicle decision (decision): "mean" averages the per-frame point estimates and the
 //     per-frame class probabilities over the used frames (every full view counts once: with the x*
 //     variants a frame's posterior remembers the earlier ones only through x*); "last" takes the
@@ -95,7 +106,12 @@
 //     passage, comes out short or narrow (a 9.6 m truck as 1.9 x 3.1 x 7.3 m = 44 m^3, 10.7 m
 //     trucks as L 2.7-3.4 m), while its height, read from the roof's far corner in a near view,
 //     holds. 3.0 m keeps a margin over the vans' estimated heights and over real high-roof vans;
-//     the values measured are in benchmarks/vehicles.py. 0 = off.
+//     the values measured are in benchmarks/vehicles.py. 0 = off. Nor does the volume count a
+//     width beyond max_vehicle_width, 2.6 m: no road vehicle is wider (the same Directive: 2.55 m,
+//     2.60 m refrigerated), so more is another vehicle's pixels -- two cars abreast, receding from
+//     the camera as one blob for their whole passage, came out 3.1-3.7 m wide and 7 m long, heavy
+//     by volume, though 2.1-2.2 m tall. The smallest heavies (~2.9 m tall, 7 m long) reach 45 m^3
+//     at 2.2 m wide, so capping a width over 2.6 m turns none light. 0 = off.
 #include <array>
 #include <cstdint>
 #include <limits>
@@ -146,6 +162,7 @@ struct VehicleEstimatorParams {
   LightHeavyRule light_heavy_rule = LightHeavyRule::Volume;
   double heavy_volume = 45.0;  // m^3, for light_heavy_rule = "volume" (see above)
   double heavy_height = 3.0;   // m, for "volume": also heavy when H >= this (see above); 0 = off
+  double max_vehicle_width = 2.6;  // m, for "volume": the volume counts W up to this (see above); 0 = off
   VehicleDecision decision = VehicleDecision::Auto;
   double border_margin_px = 1.0;  // a silhouette this close to the image border is cut by it
   // The resolution cut of "frames used": a view is used when its length's resolution (metres of
@@ -160,6 +177,9 @@ struct VehicleEstimatorParams {
   // "rays": views whose ray lies farther than this from the fit (Mahalanobis under S) are left out
   // of the answer (see "outlying views" above); 0 = every used view.
   double outlier_gate = 3.0;
+  // "rays": views beyond the resolution cut whose ray lies within this of the answer join it
+  // (Mahalanobis under S; see "far views" above); 0 = off.
+  double far_view_gate = 3.0;
   std::uint64_t seed = 0;
 
   static const core::ParameterTable<VehicleEstimatorParams>& table();
@@ -246,12 +266,15 @@ class VehicleDimensionEstimator {
     std::vector<Eigen::VectorXd> class_probability; // per used frame
     std::vector<double> resolution;                 // per used frame, edge_resolution of the length
     std::vector<RaySums> ray_terms;                 // per used frame ("rays"): its own factor
+    std::vector<RaySums> far_terms;                 // "rays", far_view_gate: views beyond the cut
     double best_resolution = std::numeric_limits<double>::infinity();
     VehiclePosterior last;
     RaySums rays;
   };
   double resolution_bound(double best) const;
   int refit_without_outliers(const Track& t, VehiclePosterior& post) const;
+  int add_far_views(const Track& t, std::vector<const RaySums*> kept, VehiclePosterior& post, core::Rng& rng) const;
+  void rechain(const RaySums& sums, VehiclePosterior& post, core::Rng& rng) const;
   void drop_coarse_views(Track& t) const;
   Track& track(int vehicle_id, int frame);
   bool touches_border(const Eigen::Ref<const Eigen::Matrix2Xd>& polygon) const;
