@@ -553,8 +553,9 @@ def test_far_views_that_agree_with_the_near_ones_fix_the_dimensions_they_leave_o
     """Exact silhouettes: the views within the resolution cut alone (far_view_gate 0) leave one
     direction of W-H-L to Table 1's narrow models, and the heavies come out 0.3 m narrow and 2 m
     short (medians). With the default, the far views whose rays lie within 3 sigma of S of that
-    answer join it: each of W, H and L is nearer the truth on average, every vehicle uses more
-    views, and every one is still called right."""
+    answer join it (S widened by their resolution over the cut's): each of W, H and L is nearer the
+    truth on average (by 0.03-0.16 m), every vehicle uses more views, and every one is still called
+    right."""
     truth = {v.id: v for v in scene.vehicles}
 
     def errors(estimates):
@@ -563,7 +564,7 @@ def test_far_views_that_agree_with_the_near_ones_fix_the_dimensions_they_leave_o
     near, both = run(camera, silhouettes, far_view_gate=0.0), run(camera, silhouettes)
     heavy = np.array([truth[e["vehicle_id"]].heavy for e in near])
     assert np.median(errors(near)[heavy], axis=0)[[0, 2]] == pytest.approx([-0.34, -1.98], abs=0.05)
-    assert np.all(np.abs(errors(both)).mean(axis=0) < np.abs(errors(near)).mean(axis=0) - 0.03)
+    assert np.all(np.abs(errors(both)).mean(axis=0) < np.abs(errors(near)).mean(axis=0) - 0.02)
     for a, b in zip(near, both):
         assert b["frames_used"] > a["frames_used"]
         assert (b["light_heavy"] == "heavy") == truth[b["vehicle_id"]].heavy

@@ -64,16 +64,18 @@ VehicleEstimatorParams chain_params(VehicleSampler sampler, int samples) {
 
 // The Gaussian N(mu, Sigma) proportional to N(x; m, diag s^2) prod_k exp(-1/2 (x - a_k)^T M_k (x - a_k)),
 // M_k = P_k S^-1 P_k (each ray's likelihood written directly as the residual of the orthogonal
-// projection), in information form.
+// projection), in information form. With `widen`, view k's S is sigma^2 widen[k]^2 I.
 std::pair<Eigen::Vector3d, Eigen::Matrix3d> gaussian_posterior(const std::vector<VehicleObservation>& views,
                                                                const Eigen::Vector3d& m, const Eigen::Vector3d& s,
-                                                               double sigma) {
+                                                               double sigma, const std::vector<double>& widen = {}) {
   Eigen::Matrix3d info = s.cwiseAbs2().cwiseInverse().asDiagonal();
   Eigen::Vector3d vec = info * m;
-  for (const auto& obs : views) {
+  for (std::size_t k = 0; k < views.size(); ++k) {
+    const auto& obs = views[k];
+    const double sigma_k = sigma * (widen.empty() ? 1.0 : widen[k]);
     const Eigen::Vector3d d = (obs.b - obs.a).normalized();
     const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - d * d.transpose();
-    const Eigen::Matrix3d M = P * P / (sigma * sigma);
+    const Eigen::Matrix3d M = P * P / (sigma_k * sigma_k);
     info += M;
     vec += M * obs.a;
   }
@@ -443,18 +445,24 @@ TEST(VehicleDimensionEstimator, ResolutionCutIsRelaxedToEachVehiclesBestViews) {
 }
 
 // Far views (far_view_gate): the views beyond the cut whose rays lie within the gate of the near
-// views' answer join it. Exact silhouettes of one rigid cuboid all agree, so every view joins and
-// the answer is the closed-form posterior given all of them; a view of a cuboid 8 m longer (two
-// vehicles in one far outline) lies beyond the gate and stays out.
+// views' answer join it, each with S widened by its resolution over the cut's. Exact silhouettes of
+// one rigid cuboid all agree, so every view joins and the answer is the closed-form posterior given
+// all of them so weighted; a view of a cuboid 8 m longer (two vehicles in one far outline) lies
+// beyond the gate and stays out.
 TEST(VehicleDimensionEstimator, FarViewsThatAgreeJoinTheAnswer) {
   const Camera cam = mast_camera();
   const Eigen::Vector3d whl(2.5, 3.8, 12.0), m(2.3, 3.2, 10.0), s(0.3, 0.5, 2.0);
   std::vector<Eigen::Matrix2Xd> approaching;
   std::vector<VehicleObservation> views;
+  double best = std::numeric_limits<double>::infinity();
   for (double along = 66.0; along >= 36.0; along -= 3.0) {
     approaching.push_back(silhouette(cam, corners_at(cam, 4.3, along, whl(0), whl(1), whl(2))));
     views.push_back(models::observe_silhouette(cam, approaching.back()));
+    best = std::min(best, views.back().edge_resolution(1));
   }
+  std::vector<double> widen;  // r / (1.3 r_best) beyond the cut
+  for (const auto& v : views) widen.push_back(std::max(1.0, v.edge_resolution(1) / (1.3 * best)));
+  ASSERT_GT(*std::max_element(widen.begin(), widen.end()), 1.5);
   const Eigen::Matrix2Xd merged = silhouette(cam, corners_at(cam, 4.3, 75.0, whl(0), whl(1), whl(2) + 8.0));
   auto p = chain_params(VehicleSampler::Rays, 20000);
   p.proposal_scale = 0.3;
@@ -464,7 +472,7 @@ TEST(VehicleDimensionEstimator, FarViewsThatAgreeJoinTheAnswer) {
   filters::VehicleDimensionEstimator est(cam, one, p);
   est.update_polygon(1, 1, merged);  // the farthest: used until nearer views tighten the cut
   for (std::size_t k = 0; k < approaching.size(); ++k) est.update_polygon(1, static_cast<int>(k) + 2, approaching[k]);
-  const auto [mu, cov] = gaussian_posterior(views, m, s, p.likelihood.sigma_w);
+  const auto [mu, cov] = gaussian_posterior(views, m, s, p.likelihood.sigma_w, widen);
   const auto e = est.estimate(1);
   ASSERT_TRUE(e.valid);
   EXPECT_EQ(e.frames_used, static_cast<int>(views.size()));

@@ -410,7 +410,7 @@ void VehicleDimensionEstimator::drop_coarse_views(Track& t) const {
   std::size_t kept = 0;
   for (std::size_t i = 0; i < t.resolution.size(); ++i) {
     if (t.resolution[i] > bound) {
-      if (rays && params_.far_view_gate > 0.0) t.far_terms.push_back(t.ray_terms[i]);
+      if (rays && params_.far_view_gate > 0.0) t.far_views.emplace_back(t.resolution[i], t.ray_terms[i]);
       continue;
     }
     t.resolution[kept] = t.resolution[i];
@@ -441,7 +441,7 @@ bool VehicleDimensionEstimator::add(Track& t, const VehicleObservation& obs) {
   RaySums term;
   if (rays) term.add(obs, params_.likelihood);
   if (resolution > resolution_bound(t.best_resolution)) {  // too far to tell its length
-    if (rays && params_.far_view_gate > 0.0) t.far_terms.push_back(term);
+    if (rays && params_.far_view_gate > 0.0) t.far_views.emplace_back(resolution, term);
     return false;
   }
   if (rays) {
@@ -507,7 +507,7 @@ int VehicleDimensionEstimator::refit_without_outliers(const Track& t, VehiclePos
       rechain(sums, post, rng);
     }
   }
-  return add_far_views(t, std::move(kept), post, rng);
+  return add_far_views(t, kept, post, rng);
 }
 
 // `post` replaced by the chain on the product of the rays in `sums` and the prior, from its mean.
@@ -519,19 +519,25 @@ void VehicleDimensionEstimator::rechain(const RaySums& sums, VehiclePosterior& p
 }
 
 // The far views that agree with the answer join it (header, "far views"): the chain re-runs on the
-// kept views and the far views within far_view_gate of `post`. Returns the number of views used.
-int VehicleDimensionEstimator::add_far_views(const Track& t, std::vector<const RaySums*> kept,
+// kept views and the far views within far_view_gate of `post` (under S), each with S widened by its
+// resolution over the cut's. Returns the number of views used.
+int VehicleDimensionEstimator::add_far_views(const Track& t, const std::vector<const RaySums*>& kept,
                                              VehiclePosterior& post, core::Rng& rng) const {
   const double gate2 = params_.far_view_gate * params_.far_view_gate;
-  const std::size_t near = kept.size();
-  for (const auto& term : t.far_terms) {
-    if (term.squared_distance(post.mean) <= gate2) kept.push_back(&term);
-  }
-  if (kept.size() == near) return static_cast<int>(near);
+  const double bound = resolution_bound(t.best_resolution);
   RaySums sums;
   for (const RaySums* term : kept) sums.add(*term);
-  rechain(sums, post, rng);
-  return static_cast<int>(kept.size());
+  int joined = 0;
+  for (const auto& [resolution, term] : t.far_views) {
+    if (term.squared_distance(post.mean) > gate2) continue;
+    const double weight = std::min(1.0, (bound / resolution) * (bound / resolution));  // S x (r / bound)^2
+    RaySums far = term;
+    far.A *= weight, far.g *= weight, far.c *= weight;
+    sums.add(far);
+    ++joined;
+  }
+  if (joined > 0) rechain(sums, post, rng);
+  return static_cast<int>(kept.size()) + joined;
 }
 
 VehicleEstimate VehicleDimensionEstimator::estimate(int vehicle_id) const {

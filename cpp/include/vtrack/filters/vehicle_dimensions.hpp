@@ -74,16 +74,20 @@
 //     left out are not counted in frames_used. 0 = off. The per-frame posteriors (update(),
 //     posterior()) are not refitted; only the answer (estimate()) is.
 //   * far views ("rays", far_view_gate): the views the resolution cut leaves out are held, and
-//     those whose ray lies within far_view_gate of the refitted answer (the same units) join it:
-//     the chain re-runs on the kept views and those far ones, which count in frames_used. Why: the
+//     those whose ray lies within far_view_gate of the refitted answer (the same units) join it,
+//     each with S widened by its resolution over the cut's (S (r / r_cut)^2: a pixel there is that
+//     many times more metres, and an outline a pixel off moves its far corner as far): the chain
+//     re-runs on the kept views and those far ones, which count in frames_used. Why: the
 //     views within the cut are the near ones, whose rays come from much the same direction, so
 //     together they fix two of W, H, L well and leave the third to the class prior -- and Table
 //     1's truck is 2.0 +- 0.2 m wide, a van's size: from exact silhouettes, heavies came out
 //     0.2-0.6 m narrow and 0.4-3 m short. A far view's shallow ray crosses them and fixes that
 //     third dimension. The cut is there for the far outlines that are no one vehicle's (two
 //     vehicles emerging from the distance as one blob, metres too long): their rays miss the
-//     answer of the near views and stay out. Default 3, the outlier gate's: a far view joins when
-//     it would be no outlier among the near ones (benchmarks/vehicles.py: the figures). 0 = off.
+//     answer of the near views and stay out (the gate is under S itself, not the widened one: a
+//     widened gate let them in). Default 3, the outlier gate's: a far view joins when it would be
+//     no outlier among the near ones. Unwidened, far views with 1-2 px of outline noise made cars
+//     too tall (benchmarks/vehicles.py: the figures). 0 = off.
 //   * the per-vehicle decision (decision): "mean" averages the per-frame point estimates and the
 //     per-frame class probabilities over the used frames (every full view counts once: with the x*
 //     variants a frame's posterior remembers the earlier ones only through x*); "last" takes the
@@ -266,14 +270,15 @@ class VehicleDimensionEstimator {
     std::vector<Eigen::VectorXd> class_probability; // per used frame
     std::vector<double> resolution;                 // per used frame, edge_resolution of the length
     std::vector<RaySums> ray_terms;                 // per used frame ("rays"): its own factor
-    std::vector<RaySums> far_terms;                 // "rays", far_view_gate: views beyond the cut
+    std::vector<std::pair<double, RaySums>> far_views;  // "rays", far_view_gate: beyond the cut (resolution, term)
     double best_resolution = std::numeric_limits<double>::infinity();
     VehiclePosterior last;
     RaySums rays;
   };
   double resolution_bound(double best) const;
   int refit_without_outliers(const Track& t, VehiclePosterior& post) const;
-  int add_far_views(const Track& t, std::vector<const RaySums*> kept, VehiclePosterior& post, core::Rng& rng) const;
+  int add_far_views(const Track& t, const std::vector<const RaySums*>& kept, VehiclePosterior& post,
+                    core::Rng& rng) const;
   void rechain(const RaySums& sums, VehiclePosterior& post, core::Rng& rng) const;
   void drop_coarse_views(Track& t) const;
   Track& track(int vehicle_id, int frame);
