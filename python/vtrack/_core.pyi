@@ -769,11 +769,13 @@ class VehicleDimensionEstimator:
         light_heavy_rule: Literal["volume", "class"] = "volume",
         heavy_volume: float = 45.0,
         heavy_height: float = 3.0,
+        max_vehicle_width: float = 2.6,
         decision: Literal["auto", "mean", "last"] = "auto",
         border_margin_px: float = 1.0,
         max_length_resolution: float = 0.0,
         length_resolution_factor: float = 4.0,
         outlier_gate: float = 3.0,
+        far_view_gate: float = 3.0,
         seed: int = 0,
     ) -> None: ...
     def update(self, vehicle_id: int, silhouette: ArrayLike, frame: Optional[int] = None) -> bool: ...
