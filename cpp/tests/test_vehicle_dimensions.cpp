@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -394,14 +395,11 @@ TEST(VehicleDimensionEstimator, FramesUsedAndVehiclesNeverFullyInView) {
   EXPECT_EQ(est.estimates().size(), 3u);
 }
 
-// The resolution cut is per vehicle: with a fixed cut finer than any view of a vehicle seen only
-// from afar, the cut alone leaves it no view (not fully in view); relaxed to a factor of its best
-// view, it keeps exactly the views within that factor, whatever order they come in (approaching:
-// the coarse views first and dropped later; receding: refused at once), and the "rays" posterior
-// is the closed-form one given exactly those views.
-TEST(VehicleDimensionEstimator, ResolutionCutIsRelaxedToEachVehiclesBestViews) {
-  const Camera cam = mast_camera();
-  const Eigen::Vector3d whl(2.5, 3.8, 12.0), m(2.3, 3.2, 10.0), s(0.3, 0.5, 2.0);
+namespace {
+// A lorry of dimensions `whl` approaching the mast from 66 to 36 m, every 3 m: its exact
+// silhouettes, their observations and the best resolution among them.
+std::tuple<std::vector<Eigen::Matrix2Xd>, std::vector<VehicleObservation>, double> approaching_lorry(
+    const Camera& cam, const Eigen::Vector3d& whl) {
   std::vector<Eigen::Matrix2Xd> approaching;
   std::vector<VehicleObservation> views;
   double best = std::numeric_limits<double>::infinity();
@@ -410,6 +408,19 @@ TEST(VehicleDimensionEstimator, ResolutionCutIsRelaxedToEachVehiclesBestViews) {
     views.push_back(models::observe_silhouette(cam, approaching.back()));
     best = std::min(best, views.back().edge_resolution(1));
   }
+  return {approaching, views, best};
+}
+}  // namespace
+
+// The resolution cut is per vehicle: with a fixed cut finer than any view of a vehicle seen only
+// from afar, the cut alone leaves it no view (not fully in view); relaxed to a factor of its best
+// view, it keeps exactly the views within that factor, whatever order they come in (approaching:
+// the coarse views first and dropped later; receding: refused at once), and the "rays" posterior
+// is the closed-form one given exactly those views.
+TEST(VehicleDimensionEstimator, ResolutionCutIsRelaxedToEachVehiclesBestViews) {
+  const Camera cam = mast_camera();
+  const Eigen::Vector3d whl(2.5, 3.8, 12.0), m(2.3, 3.2, 10.0), s(0.3, 0.5, 2.0);
+  const auto [approaching, views, best] = approaching_lorry(cam, whl);
   auto p = chain_params(VehicleSampler::Rays, 20000);
   p.proposal_scale = 0.3;  // two far rays leave L metres wide: longer steps, thinned, to mix
   p.thinning = 10;
@@ -452,14 +463,7 @@ TEST(VehicleDimensionEstimator, ResolutionCutIsRelaxedToEachVehiclesBestViews) {
 TEST(VehicleDimensionEstimator, FarViewsThatAgreeJoinTheAnswer) {
   const Camera cam = mast_camera();
   const Eigen::Vector3d whl(2.5, 3.8, 12.0), m(2.3, 3.2, 10.0), s(0.3, 0.5, 2.0);
-  std::vector<Eigen::Matrix2Xd> approaching;
-  std::vector<VehicleObservation> views;
-  double best = std::numeric_limits<double>::infinity();
-  for (double along = 66.0; along >= 36.0; along -= 3.0) {
-    approaching.push_back(silhouette(cam, corners_at(cam, 4.3, along, whl(0), whl(1), whl(2))));
-    views.push_back(models::observe_silhouette(cam, approaching.back()));
-    best = std::min(best, views.back().edge_resolution(1));
-  }
+  const auto [approaching, views, best] = approaching_lorry(cam, whl);
   std::vector<double> widen;  // r / (1.3 r_best) beyond the cut
   for (const auto& v : views) widen.push_back(std::max(1.0, v.edge_resolution(1) / (1.3 * best)));
   ASSERT_GT(*std::max_element(widen.begin(), widen.end()), 1.5);
