@@ -486,8 +486,9 @@ const VehiclePosterior* VehicleDimensionEstimator::posterior(int vehicle_id) con
 
 // The "rays" answer refitted without outlying views (header, "outlying views"): `post` (the last
 // posterior) is replaced by the chain on the kept views' sums, pass after pass, while some but not
-// all of the kept views lie beyond the gate. Returns the number of views kept. The chain draws from a
-// copy of the vehicle's stream: the answer is the same at every call.
+// all of the kept views lie beyond the gate; then the far views that agree join it (add_far_views()).
+// Returns the number of views used. The chain draws from a copy of the vehicle's stream: the answer
+// is the same at every call.
 int VehicleDimensionEstimator::refit_without_outliers(const Track& t, VehiclePosterior& post) const {
   std::vector<const RaySums*> kept;
   for (const auto& term : t.ray_terms) kept.push_back(&term);
