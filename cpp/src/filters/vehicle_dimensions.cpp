@@ -300,10 +300,10 @@ void RaySums::add(const VehicleObservation& obs, const models::RayLikelihoodPara
   ++frames;
 }
 
-void RaySums::add(const RaySums& other) {
-  A += other.A;
-  g += other.g;
-  c += other.c;
+void RaySums::add(const RaySums& other, double weight) {
+  A += weight * other.A;
+  g += weight * other.g;
+  c += weight * other.c;
   frames += other.frames;
 }
 
@@ -438,10 +438,13 @@ bool VehicleDimensionEstimator::add(Track& t, const VehicleObservation& obs) {
     drop_coarse_views(t);
   }
   const bool rays = params_.sampler == VehicleSampler::Rays;
+  const bool too_far = resolution > resolution_bound(t.best_resolution);  // to tell its length
+  const bool held_far = rays && params_.far_view_gate > 0.0;
+  if (too_far && !held_far) return false;
   RaySums term;
   if (rays) term.add(obs, params_.likelihood);
-  if (resolution > resolution_bound(t.best_resolution)) {  // too far to tell its length
-    if (rays && params_.far_view_gate > 0.0) t.far_views.emplace_back(resolution, term);
+  if (too_far) {
+    t.far_views.emplace_back(resolution, term);
     return false;
   }
   if (rays) {
@@ -531,10 +534,7 @@ int VehicleDimensionEstimator::add_far_views(const Track& t, const std::vector<c
   int joined = 0;
   for (const auto& [resolution, term] : t.far_views) {
     if (term.squared_distance(post.mean) > gate2) continue;
-    const double weight = std::min(1.0, (bound / resolution) * (bound / resolution));  // S x (r / bound)^2
-    RaySums far = term;
-    far.A *= weight, far.g *= weight, far.c *= weight;
-    sums.add(far);
+    sums.add(term, std::min(1.0, (bound / resolution) * (bound / resolution)));  // S x (r / bound)^2
     ++joined;
   }
   if (joined > 0) rechain(sums, post, rng);

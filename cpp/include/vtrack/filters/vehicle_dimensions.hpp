@@ -207,7 +207,7 @@ struct RaySums {
   double c = 0.0;  // sum a_k^T P_k S^-1 P_k a_k, so that the sums give the squared distance itself
   int frames = 0;
   void add(const models::VehicleObservation& obs, const models::RayLikelihoodParams& likelihood);
-  void add(const RaySums& other);
+  void add(const RaySums& other, double weight = 1.0);  // weight: S of `other` divided by it
   // -1/2 (x^T A x - 2 g^T x): the log of the product of the added ray likelihoods, up to a constant.
   double log_likelihood(const Eigen::Vector3d& x) const { return -0.5 * x.dot(A * x) + g.dot(x); }
   // x^T A x - 2 g^T x + c: for one view's term, the squared Mahalanobis distance (under S) of x
